@@ -1,0 +1,19 @@
+# Warning flags for our own targets; C4D_STRICT makes them errors (on in CI).
+function(c4d_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wshadow -Wno-unused-parameter
+    $<$<BOOL:${C4D_STRICT}>:-Werror>)
+endfunction()
+
+if(C4D_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+if(C4D_BUILD_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "C4D_BUILD_FUZZ needs clang: configure with CC=clang CXX=clang++")
+  endif()
+  # Coverage instrumentation for the whole library; the fuzz targets add the libFuzzer main.
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+endif()

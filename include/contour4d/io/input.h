@@ -1,0 +1,31 @@
+#pragma once
+//! \file input.h
+//! \brief One entry point for every contour input: picks the reader from what INPUT is.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "contour4d/core/stack.h"
+
+namespace c4d {
+
+//! How to read an input.
+struct InputOptions {
+  std::vector<std::string> contour_types;  //!< GPFile contour types to keep; empty = SAX_LV_ENDOCARDIAL
+  std::string label;                       //!< keep only this label (empty: all labels)
+  StackOptions stack;                      //!< validation tolerances
+};
+
+//! What was read, and notes for the user (which slices and frames were used or skipped, why).
+struct InputResult {
+  Sequence sequence;
+  std::string format;               //!< "contour4d-json", "gpfile", ...
+  std::vector<std::string> notes;   //!< human-readable lines for the summary
+};
+
+//! Reads a .json contour file or a GPFile folder (a folder with GPFile_*.txt, or its parent).
+//! \throw IoError / InvalidInput with context.
+InputResult read_contours(const std::filesystem::path& input, const InputOptions& options = {});
+
+}  // namespace c4d

@@ -1,0 +1,1 @@
+# Sources of the connect stage (paths relative to src/).

@@ -1,0 +1,1 @@
+# Sources of the readers (contour JSON, GPFile, input dispatch), paths relative to src/.

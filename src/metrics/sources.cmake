@@ -1,0 +1,1 @@
+# Sources of the metrics stage (paths relative to src/).

@@ -1,0 +1,1 @@
+# Sources of the phantoms stage (paths relative to src/).

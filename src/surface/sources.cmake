@@ -1,0 +1,1 @@
+# Sources of the surface stage (paths relative to src/).
