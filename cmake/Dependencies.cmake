@@ -19,3 +19,16 @@ endif()
 if(C4D_BUILD_BENCH)
   c4d_require(benchmark libbenchmark-dev)
 endif()
+
+# ITK: medical image I/O (NIfTI, NRRD, MetaImage, DICOM via GDCM) for label masks and DICOM geometry.
+c4d_require(ITK libinsighttoolkit5-dev COMPONENTS ITKCommon ITKIOImageBase ITKIONIFTI ITKIONRRD ITKIOMeta ITKIOGDCM ITKGDCM)
+
+# glTF export: tinygltf and meshoptimizer.
+c4d_require(TinyGLTF libtinygltf-dev)
+c4d_require(meshoptimizer libmeshoptimizer-dev)
+
+# Headless rendering (EGL + OpenGL, Mesa's llvmpipe where there is no GPU) and the viewer (GLFW).
+find_package(OpenGL COMPONENTS OpenGL EGL)
+if(C4D_BUILD_VIEWER)
+  c4d_require(glfw3 libglfw3-dev)
+endif()

@@ -7,13 +7,14 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config clang libclang-rt-14-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev
-  libinsighttoolkit5-dev
+  libinsighttoolkit5-dev libgdcm-tools
   libtinygltf-dev libmeshoptimizer-dev libstb-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev
   libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libegl-dev libgl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri
-  python3 python3-numpy python3-vtk9 python3-nibabel
+  python3 python3-numpy python3-vtk9 python3-nibabel python3-skimage python3-matplotlib
+  libegl-mesa0 mesa-utils
 )
 
 missing=()

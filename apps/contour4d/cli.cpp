@@ -31,6 +31,9 @@ int run(int argc, char** argv) {
   add_extract_command(root, commands);
   add_evaluate_command(root, commands);
   add_phantom_command(root, commands);
+  add_pack_command(root, commands);
+  add_unpack_command(root, commands);
+  add_render_command(root, commands);
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

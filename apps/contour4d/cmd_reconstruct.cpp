@@ -1,11 +1,20 @@
 // `contour4d reconstruct`: contours in, 4D mesh out (the main job).
+#include <algorithm>
+#include <chrono>
 #include <iostream>
+#include <memory>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
 
 #include "cli.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/io/input.h"
+#include "contour4d/io/mesh_output.h"
+#include "contour4d/io/output_dir.h"
+#include "contour4d/motion/reconstruct4d.h"
+#include "progress.h"
 
 namespace c4d::cli {
 namespace {
@@ -16,31 +25,150 @@ struct ReconstructArgs {
   int frame = -1;
   std::string label;
   std::vector<std::string> types;
+  double edge = SurfaceOptions{}.edge;
+  std::string cap = "rounded";
+  std::string method = "rbf-project";
+  int threads = 0;
+  double pin_spacing = MorphOptions{}.pin_spacing;
 };
 
+nlohmann::json connections_json(const std::vector<Connection>& cs) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const Connection& c : cs)
+    a.push_back({{"frame_a", c.frame_a}, {"slice_a", c.slice_a}, {"contour_a", c.contour_a}, {"frame_b", c.frame_b},
+                 {"slice_b", c.slice_b}, {"contour_b", c.contour_b}, {"similarity", c.similarity},
+                 {"kept_by_threshold", c.kept_by_threshold}});
+  return a;
+}
+
+nlohmann::json surface_json(const SurfaceReport& r) {
+  return {{"contours", r.contours},   {"caps", r.caps},         {"branchings", r.branchings},
+          {"vertices", r.vertices},   {"triangles", r.triangles}, {"closed", r.closed},
+          {"self_intersects", r.self_intersects}, {"euler", r.euler}, {"components", r.components},
+          {"volume_mm3", r.volume},   {"warnings", r.warnings},  {"connections", connections_json(r.connections)}};
+}
+
 int run_reconstruct(const ReconstructArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::unique_ptr<tbb::global_control> threads;
+  if (a.threads > 0)
+    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, a.threads);
   InputOptions in;
   in.label = a.label;
   in.contour_types = a.types;
   const InputResult read = read_contours(a.input, in);
-  std::cout << fmt::format("read {} ({}): {} frames\n", a.input, read.format, read.sequence.frames.size());
+  const Sequence& seq = read.sequence;
+  OutputDir out(a.output);  // checks the destination is writable before the work starts
+
+  Reconstruct4DOptions opt;
+  opt.surface.label = a.label;
+  opt.surface.edge = a.edge;
+  opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
+  opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
+  opt.morph.pin_spacing = a.pin_spacing;
+  ProgressBar bar;
+  opt.progress = [&bar](const char* stage, int done, int total) { bar.update(stage, done, total); };
+
+  std::cout << fmt::format("contour4d reconstruct: {} ({}), {} frames\n", a.input, read.format, seq.frames.size());
   for (const std::string& n : read.notes) std::cout << "  " << n << "\n";
-  throw Error(ErrorCode::NotImplemented, Location{a.input},
-              "surface reconstruction is not available in this build yet (contours were read and validated; "
-              "nothing was written)",
-              "Use `contour4d extract` to inspect the contours meanwhile");
+
+  nlohmann::json report = {
+      {"tool", "contour4d 0.1.0"},
+      {"input", a.input},
+      {"input_format", read.format},
+      {"units", "mm"},
+      {"space", seq.space},
+      {"stack_normal", {seq.normal.x, seq.normal.y, seq.normal.z}},
+      {"options",
+       {{"edge_mm", a.edge}, {"cap", a.cap}, {"method", a.method}, {"threshold", opt.surface.threshold}}},
+  };
+  MeshSequence result;
+  if (a.frame >= 0) {
+    if (a.frame >= static_cast<int>(seq.frames.size()))
+      throw InvalidInput(ErrorCode::Usage, Location{a.input},
+                         fmt::format("--frame {} is out of range: the input has {} frames", a.frame, seq.frames.size()));
+    SurfaceReport sr;
+    const TriangleMesh mesh = reconstruct_frame(seq, a.frame, opt.surface, &sr);
+    result.triangles = mesh.triangles;
+    result.positions = {mesh.positions};
+    result.times_ms = {seq.frames[static_cast<std::size_t>(a.frame)].time_ms};
+    report["frames"] = {{{"frame", a.frame}, {"surface", surface_json(sr)}}};
+  } else {
+    Reconstruct4DReport rr;
+    result = reconstruct_4d(seq, opt, &rr);
+    nlohmann::json frames = nlohmann::json::array();
+    for (std::size_t f = 0; f < result.positions.size(); ++f) {
+      const MorphFrameReport& mf = rr.morph.frames[f];
+      frames.push_back({{"frame", f},
+                        {"time_ms", result.times_ms[f]},
+                        {"volume_mm3", signed_volume(result.frame(f))},
+                        {"matched_contours", mf.matched},
+                        {"rbf_sources", mf.sources},
+                        {"projection_mean_mm", mf.projection_mean},
+                        {"projection_max_mm", mf.projection_max},
+                        {"surface", surface_json(rr.surfaces[f])}});
+    }
+    report["frames"] = frames;
+    nlohmann::json events = nlohmann::json::array();
+    for (const SliceEvent& e : rr.morph.events)
+      events.push_back({{"frame", e.frame}, {"slice", e.slice}, {"kind", e.kind}, {"before", e.before}, {"after", e.after}});
+    report["topology_events"] = events;
+    nlohmann::json subs = nlohmann::json::array();
+    for (const SubMeshLifetime& s : rr.morph.submeshes)
+      subs.push_back({{"slice_below", s.slice_below}, {"slice_above", s.slice_above}, {"first_frame", s.first_frame},
+                      {"last_frame", s.last_frame}, {"contours_below", s.contours_below},
+                      {"contours_above", s.contours_above}});
+    report["submeshes"] = subs;
+    std::cout << fmt::format("  topology events (contours split/merge/appear/vanish between frames): {}\n",
+                             rr.morph.events.size());
+    std::cout << "  sub-meshes (Miara et al. Fig. 14): slices below-above, frames, contours\n";
+    for (const SubMeshLifetime& s : rr.morph.submeshes)
+      std::cout << fmt::format("    {:>3}-{:<3} frames {:>3}..{:<3} {}:{}\n", s.slice_below, s.slice_above, s.first_frame,
+                               s.last_frame, s.contours_below, s.contours_above);
+  }
+  bar.finish();
+
+  std::vector<double> volumes;
+  for (std::size_t f = 0; f < result.positions.size(); ++f) volumes.push_back(signed_volume(result.frame(f)));
+  const double edv = *std::max_element(volumes.begin(), volumes.end());
+  const double esv = *std::min_element(volumes.begin(), volumes.end());
+  report["correspondence"] = true;
+  report["vertices"] = result.positions.front().size();
+  report["triangles"] = result.triangles.size();
+  report["edv_ml"] = edv / 1000.0;
+  report["esv_ml"] = esv / 1000.0;
+  report["ef_percent"] = edv > 0 ? 100.0 * (edv - esv) / edv : 0.0;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  report["seconds"] = seconds;
+
+  write_mesh_sequence(out, result, fmt::format("contour4d reconstruct {}", a.input));
+  out.write("report.json", report.dump(2) + "\n");
+  out.commit();
+
+  std::cout << fmt::format("  mesh: {} vertices, {} triangles, the same in all {} frames\n", result.positions.front().size(),
+                           result.triangles.size(), result.positions.size());
+  std::cout << "  volume per frame (ml):";
+  for (double v : volumes) std::cout << fmt::format(" {:.1f}", v / 1000.0);
+  std::cout << "\n";
+  if (volumes.size() > 1)
+    std::cout << fmt::format("  EDV {:.1f} ml, ESV {:.1f} ml, EF {:.1f} %\n", edv / 1000, esv / 1000, 100 * (edv - esv) / edv);
+  std::cout << fmt::format("  done in {:.2f} s. Output: {}/mesh.pvd (open in ParaView), frames/, report.json\n", seconds,
+                           a.output);
+  return 0;
 }
 
 }  // namespace
 
 void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
   auto args = std::make_shared<ReconstructArgs>();
-  CLI::App* app = root.add_subcommand("reconstruct", "Contours in, 4D mesh out: one watertight mesh per frame with 1-to-1 vertex correspondence");
+  CLI::App* app = root.add_subcommand(
+      "reconstruct", "Contours in, 4D mesh out: one watertight mesh per frame with 1-to-1 vertex correspondence");
   app->footer(
       "Examples:\n"
       "  contour4d reconstruct ../shared/data/bivme-patient1/guidepoints -o out/lv\n"
-      "  contour4d reconstruct contours.json --frame 0 -o out/frame0\n"
-      "  contour4d reconstruct contours.json --label lv-endo -o out/lv\n"
+      "  contour4d reconstruct contours.json --frame 0 -o out/frame0      # one frame only\n"
+      "  contour4d reconstruct contours.json --label lv-endo --edge 1.0 -o out/lv\n"
+      "  contour4d reconstruct contours.json --cap open -o out/cfd        # open ends for CFD inlets\n"
       "INPUT is a contour JSON file or a biv-me GPFile folder. Outputs: OUTDIR/mesh.pvd (open in ParaView),\n"
       "OUTDIR/frames/frame_NNN.{vtp,obj}, OUTDIR/report.json. Coordinates in mm, in the input's patient space.");
   app->add_option("INPUT", args->input, "contour JSON file or GPFile folder")->required();
@@ -48,6 +176,19 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_option("--frame", args->frame, "reconstruct this frame only (0-based)");
   app->add_option("--label", args->label, "structure to reconstruct when the input holds several");
   app->add_option("--type", args->types, "GPFile contour type(s) to use (default SAX_LV_ENDOCARDIAL)");
+  app->add_option("--edge", args->edge, "target edge length in mm")->capture_default_str()->check(CLI::Range(0.05, 50.0));
+  app->add_option("--cap", args->cap, "end caps: rounded, flat or open")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"rounded", "flat", "open"}));
+  app->add_option("--method", args->method,
+                  "deformation: rbf-project (RBF + projection on each frame's surface) or rbf (the paper's RBF only)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"rbf-project", "rbf"}));
+  app->add_option("--pin-spacing", args->pin_spacing,
+                  "frame-0 contour vertices stay pinned on later frames' contours at least this x the median edge apart "
+                  "(larger: better triangles where contours shrink, fewer vertices exactly on contours)")
+      ->capture_default_str();
+  app->add_option("--threads", args->threads, "worker threads (0: all cores); output does not depend on it");
   commands.push_back({app, [args] { return run_reconstruct(*args); }});
 }
 

@@ -5,3 +5,5 @@ target_sources(contour4d PRIVATE
   io/obj.cpp
   io/mesh_output.cpp)
 include(io/readers.cmake)
+include(io/model.cmake)
+include(io/images.cmake)

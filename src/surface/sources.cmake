@@ -1,1 +1,9 @@
 # Sources of the surface stage (paths relative to src/).
+target_sources(contour4d PRIVATE
+  surface/resample.cpp
+  surface/tiling.cpp
+  surface/capping.cpp
+  surface/smoothing.cpp
+  surface/refine.cpp
+  surface/mesh_check.cpp
+  surface/reconstruct.cpp)

@@ -1,1 +1,5 @@
-# Tests of the surface stage.
+# Tests of the surface stage (connectivity, tiling, caps, one-frame reconstruction).
+c4d_add_test(similarity_test unit/similarity_test.cpp)
+c4d_add_test(connectivity_test unit/connectivity_test.cpp)
+c4d_add_test(tiling_test unit/tiling_test.cpp)
+c4d_add_test(reconstruct_test unit/reconstruct_test.cpp)

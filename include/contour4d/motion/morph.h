@@ -1,0 +1,76 @@
+#pragma once
+//! \file morph.h
+//! \brief 4D morphing: the frame-0 mesh carried through every frame with the same vertices and
+//! triangles (Lim et al., "4D Morphing of the Heart Model"; Miara et al. §III.E).
+
+#include <string>
+#include <vector>
+
+#include "contour4d/core/mesh.h"
+#include "contour4d/core/stack.h"
+
+namespace c4d {
+
+//! How a frame's mesh is obtained from the previous one.
+enum class MorphMethod {
+  Rbf,         //!< the paper: match mesh sections to the next contours, Hardy-multiquadric RBF in sub-steps
+  RbfProject,  //!< default: the paper's RBF as a first guess, then a Laplacian-regularised projection onto the
+               //!< frame's own reconstructed surface and tangential relaxation (exact fit, kept quality)
+};
+
+//! Options of the morphing stage.
+struct MorphOptions {
+  MorphMethod method = MorphMethod::RbfProject;  //!< see MorphMethod
+  int rbf_steps = 10;              //!< RBF sub-steps against crossing paths (paper: 10); RbfProject uses 1
+  int sources_per_contour = 48;    //!< chain points per matched contour used as RBF sources
+  double threshold = 0.3;          //!< similarity for a chain↔contour match (paper: 30 %)
+  double pin_spacing = 0.75;       //!< pinned contour vertices at least this × median edge apart (shrunk contours)
+  int projection_iterations = 6;   //!< regularised projection rounds (RbfProject)
+  double stiffness = 1.0;          //!< weight of the Laplacian term against the closest-point term
+  int relax_iterations = 4;        //!< tangential relaxation rounds, each ended by an exact re-projection
+  int relax_sweeps = 100;          //!< Jacobi sweeps per round in the tangent planes (cheap)
+  double relax_step = 0.5;         //!< fraction of the tangential move toward the neighbours' centroid
+};
+
+//! A 2D contour topology change on one slice between two frames.
+struct SliceEvent {
+  int frame = 0;       //!< the later frame
+  int slice = 0;       //!< slice id
+  std::string kind;    //!< "split", "merge", "appear", "vanish" or "change"
+  int before = 0;      //!< contours (mesh section loops) on the slice in the earlier frame
+  int after = 0;       //!< contours on the slice in the later frame
+};
+
+//! Miara et al. Fig. 14: a sub-mesh between two adjacent slices serves over a run of frames; a
+//! change in the contours on either slice starts another.
+struct SubMeshLifetime {
+  int slice_below = 0, slice_above = 0;  //!< slice ids (by offset)
+  int first_frame = 0, last_frame = 0;   //!< inclusive
+  int contours_below = 0, contours_above = 0;
+};
+
+//! Per-frame figures of the morph.
+struct MorphFrameReport {
+  int matched = 0;             //!< section↔contour matches used as RBF constraints
+  int sources = 0;             //!< RBF source points
+  double projection_max = 0;   //!< max distance (mm) from the frame's surface before the final projection
+  double projection_mean = 0;  //!< mean of the same
+};
+
+//! What morph_sequence did.
+struct MorphReport {
+  std::vector<MorphFrameReport> frames;
+  std::vector<SliceEvent> events;
+  std::vector<SubMeshLifetime> submeshes;
+};
+
+//! Carries `frame0` (a closed mesh through frame 0's contours) through every frame of `seq`.
+//! `surfaces[t]` is frame t's own surface (needed by RbfProject; may be empty for Rbf).
+//! \throw SolverError when a frame cannot be fitted.
+MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, const std::vector<TriangleMesh>& surfaces,
+                            const MorphOptions& options = {}, MorphReport* report = nullptr);
+
+//! Sub-mesh lifetimes from the contour counts of each slice over the frames.
+std::vector<SubMeshLifetime> submesh_lifetimes(const Sequence& seq);
+
+}  // namespace c4d

@@ -1,0 +1,35 @@
+#pragma once
+//! \file reconstruct4d.h
+//! \brief The whole pipeline (Lim et al. Fig. 1): contours of every frame → frame-0 surface →
+//! morphed through all frames with 1-to-1 vertex correspondence.
+
+#include <functional>
+#include <vector>
+
+#include "contour4d/core/mesh.h"
+#include "contour4d/core/stack.h"
+#include "contour4d/motion/morph.h"
+#include "contour4d/surface/reconstruct.h"
+
+namespace c4d {
+
+//! Options of the 4D reconstruction.
+struct Reconstruct4DOptions {
+  SurfaceOptions surface;  //!< the one-frame surface (frame 0, and each frame's target for RbfProject)
+  MorphOptions morph;      //!< the deformation through the frames
+  std::function<void(const char* stage, int done, int total)> progress;  //!< optional progress callback
+};
+
+//! What reconstruct_4d did.
+struct Reconstruct4DReport {
+  std::vector<SurfaceReport> surfaces;  //!< per frame (the frame's own surface)
+  MorphReport morph;
+};
+
+//! Builds the 4D mesh of `seq` (one label). Frames' own surfaces are built in parallel (TBB);
+//! the result does not depend on the thread count.
+//! \throw InvalidInput / SolverError naming the frame that failed (the lowest one if several did).
+MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& options = {},
+                            Reconstruct4DReport* report = nullptr);
+
+}  // namespace c4d

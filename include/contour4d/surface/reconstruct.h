@@ -1,0 +1,57 @@
+#pragma once
+//! \file reconstruct.h
+//! \brief The surface of one frame from its contours (Lim et al. 2014, "Constructing a 3D model of
+//! the First Cardiac Frame"): canonical resampled contours → tree-based connectivity → tiling
+//! between connected contours (with branching bridges) → caps → remeshing and λ|μ|ε smoothing.
+
+#include <string>
+#include <vector>
+
+#include "contour4d/connect/connectivity.h"
+#include "contour4d/core/mesh.h"
+#include "contour4d/core/stack.h"
+#include "contour4d/surface/capping.h"
+
+namespace c4d {
+
+//! Options of the one-frame surface.
+struct SurfaceOptions {
+  std::string label;             //!< structure to build; empty: the frame must hold a single label
+  double edge = 1.25;            //!< target edge length (mm): contour resampling and remeshing
+  double corner_angle_deg = 30;  //!< contour vertices turning more than this are kept exactly
+  CapStyle caps = CapStyle::Rounded;  //!< how ends are closed
+  double cap_height = 0.5;       //!< Rounded cap height as a fraction of the adjacent slice spacing (≤ 0.5)
+  double threshold = 0.3;        //!< similarity threshold of the connectivity tree (paper: 30 %)
+  bool remesh = true;            //!< isotropic remeshing to `edge` (contours kept as mesh edges)
+  int remesh_iterations = 5;     //!< remeshing rounds
+  int smoothing_iterations = 5;  //!< λ|μ|ε pass pairs after remeshing (0: none); contour vertices fixed
+  double smoothing_epsilon = 0.2;  //!< ε bound of the smoothing (mm)
+  bool check_self_intersections = true;  //!< run CGAL's self-intersection test for the report
+};
+
+//! What reconstruct_frame did, for logs and the CLI summary.
+struct SurfaceReport {
+  std::vector<Connection> connections;  //!< above/below links used (slice ids, input contour indices)
+  int contours = 0;            //!< contours of the frame used
+  int caps = 0;                //!< caps made (CapStyle::Open: ends left open)
+  int branchings = 0;          //!< slice pairs joined through bridges (1→n, n→1, n→m)
+  std::size_t vertices = 0;    //!< output vertex count
+  std::size_t triangles = 0;   //!< output triangle count
+  bool closed = false;         //!< closed 2-manifold, consistently oriented
+  bool self_intersects = false;  //!< CGAL found intersecting triangles (when checked)
+  long euler = 0;              //!< Euler characteristic V - E + F
+  int components = 0;          //!< connected components
+  double volume = 0.0;         //!< signed volume (mm³), > 0 when outward
+  std::vector<std::string> warnings;  //!< problems that did not stop the reconstruction
+};
+
+//! Builds the surface of frame `frame` of `seq`: a closed (unless CapStyle::Open), 2-manifold,
+//! outward-oriented triangle mesh in world coordinates (mm) on which every (resampled) input
+//! contour is a closed chain of mesh edges. Result is independent of contour start points,
+//! orientation, slice order and (up to rounding) rigid motion of the input.
+//! \throw InvalidInput when the frame does not exist, holds no contour of the label, or holds
+//! several labels and none was chosen.
+TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& options = {},
+                               SurfaceReport* report = nullptr);
+
+}  // namespace c4d

@@ -1,0 +1,30 @@
+#pragma once
+//! \file refine.h
+//! \brief Remeshing to a target edge length for triangle quality (Lim et al. 2014, "Surface
+//! Smoothing and Refinement" upsamples the coarse surface; we use CGAL's isotropic remeshing,
+//! Botsch & Kobbelt 2004), keeping the input contours as chains of mesh edges.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "contour4d/core/mesh.h"
+
+namespace c4d {
+
+//! Options of remeshing.
+struct RemeshOptions {
+  double edge = 1.25;    //!< target edge length (mm)
+  int iterations = 5;    //!< split/collapse/flip/relax rounds
+  bool split_constraints = true;  //!< allow splitting contour edges longer than 4/3 edge (new vertices stay on them)
+};
+
+//! Remeshes `mesh` in place. Edges listed in `constrained` (vertex pairs, any order) are kept as
+//! polylines: their vertices never move and are never removed; they may only be split. Vertices
+//! with fixed[v] != 0 never move. New vertices come last; `fixed` is resized with them (split
+//! points of constrained edges are fixed).
+//! \pre the mesh is a 2-manifold (with or without boundary).
+void remesh_isotropic(TriangleMesh& mesh, std::vector<std::array<std::uint32_t, 2>>& constrained,
+                      std::vector<char>& fixed, const RemeshOptions& options = {});
+
+}  // namespace c4d

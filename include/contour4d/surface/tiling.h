@@ -1,0 +1,34 @@
+#pragma once
+//! \file tiling.h
+//! \brief The surface between two connected contours of adjacent slices (Lim et al. 2014,
+//! "Reconstruction from Segmented Contour Lines"; tiling after Fuchs, Kedem & Uselton 1977 and the
+//! branching of Meyers, Skinner & Sloan 1992), and the bridges that merge several contours into one
+//! chain for 1→n and n→1 branching.
+
+#include <cstdint>
+#include <vector>
+
+#include "contour4d/core/mesh.h"
+
+namespace c4d {
+
+//! Triangulates the band between two closed vertex chains. `lower` lies on the lower slice and
+//! `upper` on the upper slice (along the stack normal); both run counter-clockwise seen from
+//! above for an outer wall (clockwise for the wall of a hole). Every triangle takes two consecutive
+//! vertices of one chain and one of the other (none is flat), each chain edge is used once, and the
+//! triangles face outward. Chains may repeat a vertex (bridged chains) but never twice in a row.
+//! The tiling minimises the summed length of the spanning edges (dynamic programming, O(n·m)),
+//! starting from lower[0] and its nearest upper vertex.
+std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                                  const std::vector<Vec3>& positions);
+
+//! Merges closed chain `b` into closed chain `a` through a bridge between their closest vertices
+//! (positions compared as given). `bridge` are the vertex ids of the bridge interior from a's side
+//! to b's side (may be empty); they are walked there and back. Returns the merged chain:
+//! ..., x, bridge..., y, b loop..., y, reversed bridge..., x, ...
+//! `x_at`/`y_at` receive the chosen positions in `a` and `b` when not null.
+std::vector<std::uint32_t> bridge_chains(const std::vector<std::uint32_t>& a, std::size_t x_at,
+                                         const std::vector<std::uint32_t>& b, std::size_t y_at,
+                                         const std::vector<std::uint32_t>& bridge);
+
+}  // namespace c4d

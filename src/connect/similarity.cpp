@@ -1,0 +1,115 @@
+// Similarity index of two contours: Lim et al. 2014 (PLOS ONE 9(4): e93747), section
+// "Tree-Based Connectivity", eqs. 5 and 6. The perimeter share is measured exactly: every edge of
+// one polygon is cut at its crossings with the other, and each piece is classified by its midpoint.
+#include "contour4d/connect/similarity.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace c4d {
+namespace {
+
+struct Box {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+Box bounds(const std::vector<Vec2>& p) {
+  Box b{p[0].x, p[0].y, p[0].x, p[0].y};
+  for (const Vec2& q : p) {
+    b.x0 = std::min(b.x0, q.x);
+    b.y0 = std::min(b.y0, q.y);
+    b.x1 = std::max(b.x1, q.x);
+    b.y1 = std::max(b.y1, q.y);
+  }
+  return b;
+}
+
+bool disjoint(const Box& a, const Box& b) { return a.x1 < b.x0 || b.x1 < a.x0 || a.y1 < b.y0 || b.y1 < a.y0; }
+
+// Parameter t in (0,1) along p->q where it crosses segment a->b, if any.
+bool crossing(Vec2 p, Vec2 q, Vec2 a, Vec2 b, double& t) {
+  const Vec2 r = q - p, s = b - a;
+  const double den = cross(r, s);
+  if (den == 0.0) return false;  // parallel: collinear overlaps are handled by the midpoint test
+  const Vec2 d = a - p;
+  t = cross(d, s) / den;
+  const double w = cross(d, r) / den;
+  return t > 0.0 && t < 1.0 && w >= 0.0 && w <= 1.0;
+}
+
+// Distance from p to segment a-b.
+double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double l2 = dot(ab, ab);
+  double t = l2 > 0.0 ? dot(p - a, ab) / l2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return norm(p - (a + t * ab));
+}
+
+}  // namespace
+
+bool point_in_polygon(Vec2 p, const std::vector<Vec2>& poly) {
+  bool inside = false;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2 a = poly[i], b = poly[j];
+    if ((a.y > p.y) != (b.y > p.y)) {
+      const double x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+      if (p.x < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+double perimeter_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  if (a.size() < 2 || b.size() < 3) return 0.0;
+  const Box bb = bounds(b);
+  double total = 0.0, inside = 0.0;
+  std::vector<double> ts;
+  const std::size_t n = a.size(), m = b.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 p = a[i], q = a[(i + 1) % n];
+    const double len = norm(q - p);
+    total += len;
+    if (len == 0.0) continue;
+    const Box eb{std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)};
+    if (disjoint(eb, bb)) continue;
+    ts.assign({0.0, 1.0});
+    for (std::size_t j = 0; j < m; ++j) {
+      double t = 0.0;
+      if (crossing(p, q, b[j], b[(j + 1) % m], t)) ts.push_back(t);
+    }
+    std::sort(ts.begin(), ts.end());
+    const double tol = 1e-9 * (bb.x1 - bb.x0 + bb.y1 - bb.y0);
+    for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+      const double piece = (ts[k + 1] - ts[k]) * len;
+      if (piece <= 0.0) continue;
+      const Vec2 mid = p + (0.5 * (ts[k] + ts[k + 1])) * (q - p);
+      bool in = point_in_polygon(mid, b);
+      if (!in) {
+        // Pieces lying on b's boundary count as inside (identical contours score 1).
+        for (std::size_t j = 0; j < m && !in; ++j) in = segment_distance(mid, b[j], b[(j + 1) % m]) <= tol;
+      }
+      if (in) inside += piece;
+    }
+  }
+  return total > 0.0 ? std::min(1.0, inside / total) : 0.0;
+}
+
+double contour_similarity(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  if (a.size() < 3 || b.size() < 3) return 0.0;
+  if (disjoint(bounds(a), bounds(b))) return 0.0;
+  return std::max(perimeter_inside(a, b), perimeter_inside(b, a));
+}
+
+double slice_similarity(const std::vector<std::vector<Vec2>>& a, const std::vector<std::vector<Vec2>>& b) {
+  double sum = 0.0;
+  for (const auto& ca : a) {
+    double best = 0.0;
+    for (const auto& cb : b) best = std::max(best, contour_similarity(ca, cb));
+    sum += best;
+  }
+  return sum;
+}
+
+}  // namespace c4d

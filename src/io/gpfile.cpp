@@ -1,0 +1,488 @@
+// Reader of biv-me / Cardiac Atlas guide-point folders ("GPFile"). The format has no written spec;
+// what is accepted follows biv-me's own files (UOA Heart Mechanics Research, biv-me, example
+// guidepoints): a tab-separated table per frame whose fifth column names the slice ("frameID" in
+// older files, "sliceID" in newer), and SliceInfoFile.txt giving each slice's DICOM plane. Column 7
+// (time frame) is unreliable, so the frame is the file's position in file-number order.
+#include "contour4d/io/gpfile.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "contour4d/core/errors.h"
+#include "contour4d/io/output_dir.h"
+
+namespace c4d {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr long long kMaxSliceId = 1000000;
+constexpr std::size_t kMaxFrames = 100000;
+constexpr const char* kGpHint =
+    "a GPFile line is: x<TAB>y<TAB>z<TAB>contour type<TAB>slice id[<TAB>weight<TAB>time frame] (see docs/formats.md)";
+constexpr const char* kInfoHint =
+    "a SliceInfoFile.txt line is: <dicom name><TAB>sliceID: <TAB><id><TAB>ImagePositionPatient<TAB>x<TAB>y<TAB>z"
+    "<TAB>ImageOrientationPatient<TAB>6 numbers<TAB>PixelSpacing<TAB>2 numbers";
+
+std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> out;
+  if (line.find('\t') != std::string_view::npos) {
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t tab = line.find('\t', start);
+      out.push_back(line.substr(start, tab == std::string_view::npos ? std::string_view::npos : tab - start));
+      if (tab == std::string_view::npos) break;
+      start = tab + 1;
+    }
+  } else {
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && (line[i] == ' ')) ++i;
+      const std::size_t j = std::min(line.find(' ', i), line.size());
+      if (j > i) out.push_back(line.substr(i, j - i));
+      i = j;
+    }
+  }
+  for (std::string_view& f : out) {
+    while (!f.empty() && (f.front() == ' ' || f.front() == '\r')) f.remove_prefix(1);
+    while (!f.empty() && (f.back() == ' ' || f.back() == '\r')) f.remove_suffix(1);
+  }
+  return out;
+}
+
+//! Lines of a text with their 1-based numbers; '\r' is stripped by split_fields.
+template <class F>
+void for_each_line(const std::string& text, F&& f) {
+  std::size_t start = 0;
+  int line = 1;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    f(std::string_view(text).substr(start, end - start), line);
+    start = end + 1;
+    ++line;
+  }
+}
+
+enum class NumberStatus { Ok, NotANumber, NonFinite };
+
+NumberStatus parse_double(std::string_view s, double& out) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  if (ec == std::errc::result_out_of_range) {
+    // from_chars leaves `out` unset: overflow is infinite, underflow (tiny) is fine.
+    if (end != s.data() + s.size()) return NumberStatus::NotANumber;
+    out = std::strtod(std::string(s).c_str(), nullptr);
+    return std::isfinite(out) ? NumberStatus::Ok : NumberStatus::NonFinite;
+  }
+  if (ec != std::errc() || end != s.data() + s.size() || s.empty()) return NumberStatus::NotANumber;
+  return std::isfinite(out) ? NumberStatus::Ok : NumberStatus::NonFinite;
+}
+
+bool parse_id(std::string_view s, int& out) {
+  long long v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || s.empty() || v < 0 || v > kMaxSliceId) return false;
+  out = static_cast<int>(v);
+  return true;
+}
+
+std::string show(std::string_view s) {
+  std::string out;
+  for (char c : s.substr(0, 40)) out += (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) ? '?' : c;
+  return "\"" + out + (s.size() > 40 ? "...\"" : "\"");
+}
+
+[[noreturn]] void parse_fail(ErrorCode code, const std::string& file, int line, const std::string& what,
+                             const std::string& hint) {
+  Location where;
+  where.file = file;
+  where.line = line;
+  if (code == ErrorCode::NonFinite) throw InvalidInput(code, where, what, hint);
+  throw IoError(code, where, what, hint);
+}
+
+std::map<int, GpFileSlice> parse_slice_info(const std::string& text, const std::string& file) {
+  std::map<int, GpFileSlice> slices;
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    parse_fail(ErrorCode::EmptyFile, file, -1, "SliceInfoFile.txt is empty", kInfoHint);
+  for_each_line(text, [&](std::string_view line, int n) {
+    const std::vector<std::string_view> f = split_fields(line);
+    if (f.empty() || (f.size() == 1 && f[0].empty())) return;
+    auto key = [&](std::string_view k) -> std::size_t {
+      for (std::size_t i = 0; i < f.size(); ++i)
+        if (f[i] == k) return i;
+      return f.size();
+    };
+    auto numbers = [&](std::string_view k, std::size_t count, double* out) {
+      const std::size_t at = key(k);
+      if (at + count >= f.size())
+        parse_fail(ErrorCode::Parse, file, n, std::string(k) + " with " + std::to_string(count) + " numbers not found",
+                   kInfoHint);
+      for (std::size_t i = 0; i < count; ++i) {
+        const NumberStatus st = parse_double(f[at + 1 + i], out[i]);
+        if (st == NumberStatus::NonFinite)
+          parse_fail(ErrorCode::NonFinite, file, n, std::string(k) + " has a non-finite value", kInfoHint);
+        if (st != NumberStatus::Ok)
+          parse_fail(ErrorCode::Parse, file, n, std::string(k) + " value " + show(f[at + 1 + i]) + " is not a number",
+                     kInfoHint);
+      }
+    };
+    GpFileSlice s;
+    const std::size_t id_at = std::min(key("sliceID:"), key("sliceID"));
+    if (id_at + 1 >= f.size() || !parse_id(f[id_at + 1], s.id))
+      parse_fail(ErrorCode::Parse, file, n, "no valid \"sliceID:\" field (an integer 0.." + std::to_string(kMaxSliceId) + ")",
+                 kInfoHint);
+    s.image = std::string(f[0]);
+    double ipp[3], iop[6];
+    numbers("ImagePositionPatient", 3, ipp);
+    numbers("ImageOrientationPatient", 6, iop);
+    s.position = {ipp[0], ipp[1], ipp[2]};
+    s.row = {iop[0], iop[1], iop[2]};
+    s.column = {iop[3], iop[4], iop[5]};
+    const Vec3 nrm = cross(s.row, s.column);
+    if (!(norm(nrm) > 0.5))
+      parse_fail(ErrorCode::Parse, file, n, "ImageOrientationPatient directions are not two orthogonal unit vectors",
+                 kInfoHint);
+    s.normal = normalized(nrm);
+    if (slices.count(s.id))
+      parse_fail(ErrorCode::Parse, file, n, "slice id " + std::to_string(s.id) + " is listed twice", kInfoHint);
+    slices[s.id] = s;
+  });
+  return slices;
+}
+
+//! One guide point as read.
+struct GuidePoint {
+  Vec3 p;
+  std::string type;
+  int slice = 0;
+  int line = 0;
+};
+
+std::vector<GuidePoint> parse_frame(const std::string& text, const std::string& file) {
+  std::vector<GuidePoint> pts;
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    parse_fail(ErrorCode::EmptyFile, file, -1, "GPFile is empty", kGpHint);
+  bool first = true;
+  for_each_line(text, [&](std::string_view line, int n) {
+    const std::vector<std::string_view> f = split_fields(line);
+    if (f.empty() || (f.size() == 1 && f[0].empty())) return;
+    double x = 0;
+    if (first) {
+      first = false;
+      if (parse_double(f[0], x) == NumberStatus::NotANumber) {
+        // Header: "x y z contour type frameID|sliceID weight time frame"; columns are taken by position.
+        if (f.size() < 5)
+          parse_fail(ErrorCode::Parse, file, n, "header has " + std::to_string(f.size()) + " columns, expected at least 5",
+                     kGpHint);
+        return;
+      }
+    }
+    if (f.size() < 5)
+      parse_fail(ErrorCode::Parse, file, n, "line has " + std::to_string(f.size()) + " columns, expected at least 5",
+                 kGpHint);
+    GuidePoint g;
+    g.line = n;
+    for (int k = 0; k < 3; ++k) {
+      const NumberStatus st = parse_double(f[k], g.p[k]);
+      if (st == NumberStatus::NonFinite)
+        parse_fail(ErrorCode::NonFinite, file, n, std::string("coordinate ") + "xyz"[k] + " is not finite (" + show(f[k]) + ")",
+                   "coordinates must be finite numbers (mm)");
+      if (st != NumberStatus::Ok)
+        parse_fail(ErrorCode::Parse, file, n, std::string("coordinate ") + "xyz"[k] + " " + show(f[k]) + " is not a number",
+                   kGpHint);
+    }
+    if (f[3].empty()) parse_fail(ErrorCode::Parse, file, n, "empty contour type", kGpHint);
+    g.type = std::string(f[3]);
+    if (!parse_id(f[4], g.slice))
+      parse_fail(ErrorCode::Parse, file, n,
+                 "slice id " + show(f[4]) + " is not an integer 0.." + std::to_string(kMaxSliceId), kGpHint);
+    pts.push_back(std::move(g));
+  });
+  return pts;
+}
+
+std::string join_ids(const std::vector<int>& ids) {
+  std::string s;
+  for (int id : ids) s += (s.empty() ? "" : ", ") + std::to_string(id);
+  return s.empty() ? "none" : s;
+}
+
+//! The error `e` again, placed in a GPFile (file, line) instead of the folder.
+[[noreturn]] void relocate(const Error& e, const std::string& file, int line) {
+  std::string msg = e.what();
+  const std::string prefix = e.where().format() + ": ";
+  if (msg.rfind(prefix, 0) == 0) msg = msg.substr(prefix.size());
+  const std::string suffix = e.hint().empty() ? std::string() : ". " + e.hint();
+  if (!suffix.empty() && msg.size() >= suffix.size() && msg.compare(msg.size() - suffix.size(), suffix.size(), suffix) == 0)
+    msg.resize(msg.size() - suffix.size());
+  Location where = e.where();
+  where.file = file;
+  where.line = line > 0 ? line : -1;
+  throw InvalidInput(e.code(), where, msg, e.hint());
+}
+
+}  // namespace
+
+std::string gpfile_label(const std::string& contour_type) {
+  std::string s;
+  for (char c : contour_type) s += c == '_' ? '-' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (s.rfind("sax-", 0) == 0) s = s.substr(4);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"endocardial", "endo"}, {"epicardial", "epi"}}) {
+    const std::size_t at = s.find(from);
+    if (at != std::string::npos) s.replace(at, from.size(), to);
+  }
+  return s;
+}
+
+GpFileResult parse_gpfile_texts(const std::vector<std::string>& frames, const std::string& slice_info,
+                                const std::string& source, const GpFileOptions& options,
+                                const std::vector<std::string>& frame_names) {
+  GpFileResult result;
+  Location folder;
+  folder.file = source;
+  if (frames.empty()) throw IoError(ErrorCode::FileNotFound, folder, "no GPFile_*.txt frames", kGpHint);
+  if (frames.size() > kMaxFrames)
+    throw IoError(ErrorCode::Format, folder, "more than " + std::to_string(kMaxFrames) + " frames", kGpHint);
+  auto frame_file = [&](std::size_t f) {
+    if (f < frame_names.size()) return frame_names[f];
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "GPFile_%03zu.txt", f);
+    return source + "/" + buf;
+  };
+  for (std::size_t f = 0; f < frames.size(); ++f) result.frame_files.push_back(frame_file(f));
+
+  const std::map<int, GpFileSlice> info = parse_slice_info(slice_info, source + "/SliceInfoFile.txt");
+  std::vector<std::string> types = options.contour_types;
+  if (types.empty()) types = {"SAX_LV_ENDOCARDIAL"};
+  const std::set<std::string> wanted(types.begin(), types.end());
+  const bool want_epi = wanted.count("SAX_LV_EPICARDIAL") > 0;
+
+  // Read every frame; keep the wanted types (and the septum, to close the epicardium).
+  std::vector<std::vector<GuidePoint>> points(frames.size());
+  std::set<std::string> present_types;
+  std::map<int, int> count_by_slice;  // wanted points per slice, all frames
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    for (GuidePoint& g : parse_frame(frames[f], frame_file(f))) {
+      present_types.insert(g.type);
+      const bool keep = wanted.count(g.type) || (want_epi && g.type == "SAX_RV_SEPTUM");
+      if (!keep) continue;
+      if (!info.count(g.slice))
+        parse_fail(ErrorCode::Format, frame_file(f), g.line,
+                   "slice id " + std::to_string(g.slice) + " is not in SliceInfoFile.txt",
+                   "the fifth column must be a slice id listed in SliceInfoFile.txt");
+      if (wanted.count(g.type)) ++count_by_slice[g.slice];
+      points[f].push_back(std::move(g));
+    }
+  }
+  for (const std::string& t : types) {
+    if (!present_types.count(t)) {
+      std::string list;
+      for (const std::string& p : present_types) list += (list.empty() ? "" : ", ") + p;
+      throw InvalidInput(ErrorCode::UnknownLabel, folder, "no point has the contour type " + t,
+                         "contour types present: " + (list.empty() ? std::string("none") : list));
+    }
+  }
+
+  // Short-axis selection: the largest group of mutually parallel image planes among the slices
+  // carrying wanted points (ties: the group of the smallest id).
+  const double cos_tol = std::cos(options.parallel_tolerance_deg * std::numbers::pi / 180.0);
+  int best_ref = -1;
+  std::size_t best_size = 0;
+  for (const auto& [id, n] : count_by_slice) {
+    std::size_t size = 0;
+    for (const auto& [id2, n2] : count_by_slice)
+      if (std::abs(dot(info.at(id).normal, info.at(id2).normal)) >= cos_tol) ++size;
+    if (size > best_size) {
+      best_size = size;
+      best_ref = id;
+    }
+  }
+  std::set<int> used;
+  for (auto [id, s] : info) {
+    if (!count_by_slice.count(id)) {
+      s.note = "no points of the chosen contour types";
+    } else {
+      const double c = std::min(1.0, std::abs(dot(s.normal, info.at(best_ref).normal)));
+      if (c >= cos_tol) {
+        s.used = true;
+        used.insert(id);
+        result.slices_used.push_back(id);
+      } else {
+        std::ostringstream os;
+        os.precision(3);
+        os << "image plane " << std::acos(c) * 180.0 / std::numbers::pi << " degrees from the short-axis planes "
+           << "(long-axis view)";
+        s.note = os.str();
+        result.slices_skipped.push_back(id);
+      }
+    }
+    result.slices.push_back(s);
+  }
+
+  // One contour per (slice, type) per frame, points in file order.
+  std::vector<RawContour> raw;
+  std::vector<int> raw_line;  // first line of each contour, for messages
+  std::map<int, std::string> first_name_of_frame;
+  int closed_epi = 0, straight_epi = 0;
+  std::map<std::string, int> open_types;  // type -> contours with a closing gap
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    std::map<std::pair<int, std::string>, std::vector<const GuidePoint*>> groups;
+    for (const GuidePoint& g : points[f])
+      if (used.count(g.slice)) groups[{g.slice, g.type}].push_back(&g);
+    int index = 0;
+    bool any = false;
+    for (const auto& [key, pts] : groups) {
+      if (!wanted.count(key.second)) continue;  // the septum only closes the epicardium
+      any = true;
+      RawContour rc;
+      rc.frame = static_cast<int>(f);
+      rc.index = index++;
+      rc.line = pts.front()->line;
+      rc.contour.slice = key.first;
+      rc.contour.label = gpfile_label(key.second);
+      for (const GuidePoint* g : pts) rc.contour.points.push_back(g->p);
+      std::vector<Vec3>& c = rc.contour.points;
+      if (key.second == "SAX_LV_EPICARDIAL" && c.size() >= 3) {
+        // biv-me's epicardium is a loop with the septal part missing; the opening is the largest
+        // gap, not necessarily between the last and first points. Rotate it to the ends.
+        std::vector<double> gaps;
+        std::size_t widest = 0;
+        for (std::size_t i = 0; i < c.size(); ++i) {
+          gaps.push_back(distance(c[i], c[(i + 1) % c.size()]));
+          if (gaps[i] > gaps[widest]) widest = i;
+        }
+        const double gap = gaps[widest];
+        std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+        std::rotate(c.begin(), c.begin() + static_cast<std::ptrdiff_t>((widest + 1) % c.size()), c.end());
+        const auto sep = groups.find({key.first, "SAX_RV_SEPTUM"});
+        if (gap <= 4.0 * gaps[gaps.size() / 2]) {
+          // already closed
+        } else if (sep != groups.end() && !sep->second.empty()) {
+          // The septal wall's RV side completes the LV epicardium (as biv-me fits it): append the
+          // septum in the direction that joins the open ends with the shorter gaps.
+          const Vec3 s0 = sep->second.front()->p, s1 = sep->second.back()->p;
+          const bool reverse = distance(c.back(), s1) + distance(s0, c.front()) <
+                               distance(c.back(), s0) + distance(s1, c.front());
+          std::vector<Vec3> s;
+          for (const GuidePoint* g : sep->second) s.push_back(g->p);
+          if (reverse) std::reverse(s.begin(), s.end());
+          // Septum ends may overshoot the epicardium's open ends; drop points that lead away
+          // from the end they join, or the joint folds over itself.
+          std::size_t b = 0, e = s.size();
+          while (e - b > 1 && distance(s[b + 1], c.back()) < distance(s[b], c.back())) ++b;
+          while (e - b > 1 && distance(s[e - 2], c.front()) < distance(s[e - 1], c.front())) --e;
+          c.insert(c.end(), s.begin() + static_cast<std::ptrdiff_t>(b), s.begin() + static_cast<std::ptrdiff_t>(e));
+          ++closed_epi;
+        } else {
+          ++straight_epi;
+        }
+      } else if (c.size() >= 3) {
+        std::vector<double> gaps;
+        for (std::size_t i = 0; i + 1 < c.size(); ++i) gaps.push_back(distance(c[i], c[i + 1]));
+        std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+        if (distance(c.back(), c.front()) > 4.0 * gaps[gaps.size() / 2] + 1e-9) ++open_types[key.second];
+      }
+      raw.push_back(std::move(rc));
+    }
+    if (!any) {
+      Location where;
+      where.file = frame_file(f);
+      where.frame = static_cast<int>(f);
+      std::string t;
+      for (const std::string& x : types) t += (t.empty() ? "" : ", ") + x;
+      throw InvalidInput(ErrorCode::EmptyFrame, where, "no " + t + " points on the short-axis slices (" +
+                                                           join_ids(result.slices_used) + ")",
+                         "every frame needs at least one contour; choose other contour types with --type");
+    }
+  }
+
+  try {
+    result.sequence = build_sequence(raw, static_cast<int>(frames.size()), {}, source, options.stack);
+  } catch (const Error& e) {
+    const int f = e.where().frame;
+    if (f < 0 || static_cast<std::size_t>(f) >= frames.size()) throw;
+    int line = -1;
+    if (e.where().contour >= 0)
+      for (const RawContour& rc : raw)
+        if (rc.frame == f && rc.index == e.where().contour) line = rc.line;
+    relocate(e, frame_file(static_cast<std::size_t>(f)), line);
+  }
+  result.sequence.space = "LPS";
+
+  std::string t;
+  for (const std::string& x : types) t += (t.empty() ? "" : ", ") + x + " -> \"" + gpfile_label(x) + "\"";
+  result.notes.push_back("contour types: " + t);
+  result.notes.push_back("slices used (short-axis): " + join_ids(result.slices_used));
+  if (!result.slices_skipped.empty()) {
+    std::string s;
+    for (const GpFileSlice& sl : result.slices)
+      if (!sl.used && count_by_slice.count(sl.id)) s += (s.empty() ? "" : "; ") + std::to_string(sl.id) + ": " + sl.note;
+    result.notes.push_back("slices skipped: " + s);
+  }
+  std::vector<int> empty_ids;
+  for (const GpFileSlice& sl : result.slices)
+    if (!count_by_slice.count(sl.id)) empty_ids.push_back(sl.id);
+  if (!empty_ids.empty()) result.notes.push_back("slices without the chosen contour types: " + join_ids(empty_ids));
+  result.notes.push_back("frames: " + std::to_string(frames.size()) + " files in file-number order; time = frame index x 1 ms "
+                         "(column 7 of the GPFiles is not used)");
+  if (closed_epi) result.notes.push_back("SAX_LV_EPICARDIAL closed with the SAX_RV_SEPTUM points in " +
+                                         std::to_string(closed_epi) + " contours");
+  if (straight_epi)
+    result.notes.push_back("SAX_LV_EPICARDIAL is open and had no SAX_RV_SEPTUM points in " + std::to_string(straight_epi) +
+                           " contours: closed with a straight edge (septum shape lost there)");
+  for (const auto& [type, n] : open_types)
+    result.notes.push_back(type + " looks open in " + std::to_string(n) +
+                           " contours (closing gap > 4x the median point spacing): closed with a straight edge");
+  return result;
+}
+
+GpFileResult read_gpfile(const fs::path& folder, const GpFileOptions& options) {
+  Location where;
+  where.file = folder.string();
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec))
+    throw IoError(ErrorCode::FileNotFound, where, "not a folder", "give the folder holding GPFile_*.txt");
+  std::vector<std::pair<long long, fs::path>> files;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("GPFile_", 0) != 0 || name.size() < 12 || name.compare(name.size() - 4, 4, ".txt") != 0) continue;
+    const std::string digits = name.substr(7, name.size() - 11);
+    long long n = 0;
+    const auto [end, err] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+    if (err != std::errc() || end != digits.data() + digits.size()) continue;
+    files.emplace_back(n, entry.path());
+  }
+  if (ec) throw IoError(ErrorCode::FileNotFound, where, "cannot list the folder: " + ec.message());
+  if (files.empty())
+    throw IoError(ErrorCode::FileNotFound, where, "no GPFile_*.txt files in the folder",
+                  "give a biv-me guide-point folder (GPFile_000.txt, ..., SliceInfoFile.txt)");
+  std::sort(files.begin(), files.end());
+  const fs::path info = folder / "SliceInfoFile.txt";
+  if (!fs::exists(info, ec))
+    throw IoError(ErrorCode::MissingCompanion, where, "SliceInfoFile.txt is missing beside the GPFiles",
+                  "a GPFile folder needs " + info.string() + " (slice planes); copy it from the biv-me export");
+  std::vector<std::string> texts, names;
+  for (const auto& [n, p] : files) {
+    texts.push_back(read_file(p));
+    names.push_back(p.string());
+  }
+  GpFileResult r = parse_gpfile_texts(texts, read_file(info), folder.string(), options, names);
+  bool contiguous = true;
+  for (std::size_t i = 0; i < files.size(); ++i) contiguous = contiguous && files[i].first == static_cast<long long>(i);
+  if (!contiguous)
+    r.notes.push_back("GPFile numbers are not 0.." + std::to_string(files.size() - 1) +
+                      ": frames are the files in number order");
+  return r;
+}
+
+}  // namespace c4d

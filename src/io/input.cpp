@@ -1,0 +1,76 @@
+// One entry point for every contour input: the reader is chosen from what the path is.
+#include "contour4d/io/input.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "contour4d/core/errors.h"
+#include "contour4d/io/contours_json.h"
+#include "contour4d/io/gpfile.h"
+
+namespace c4d {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kSupported =
+    "supported inputs: a contour4d JSON file (*.json, see docs/formats.md), or a biv-me GPFile folder "
+    "(GPFile_000.txt ... plus SliceInfoFile.txt) or its parent holding a \"guidepoints\" folder";
+
+bool has_gpfiles(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return false;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string n = e.path().filename().string();
+    if (n.rfind("GPFile_", 0) == 0 && n.size() > 11 && n.compare(n.size() - 4, 4, ".txt") == 0) return true;
+  }
+  return false;
+}
+
+std::string lower_extension(const fs::path& p) {
+  std::string e = p.extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+}  // namespace
+
+InputResult read_contours(const fs::path& input, const InputOptions& options) {
+  Location where;
+  where.file = input.string();
+  std::error_code ec;
+  if (!fs::exists(input, ec))
+    throw IoError(ErrorCode::FileNotFound, where, "no such file or folder", kSupported);
+
+  InputResult result;
+  if (fs::is_directory(input, ec)) {
+    fs::path dir = input;
+    if (!has_gpfiles(dir) && has_gpfiles(dir / "guidepoints")) dir = dir / "guidepoints";
+    if (!has_gpfiles(dir))
+      throw IoError(ErrorCode::Format, where, "folder holds no GPFile_*.txt files", kSupported);
+    GpFileOptions gp;
+    gp.contour_types = options.contour_types;
+    gp.stack = options.stack;
+    GpFileResult r = read_gpfile(dir, gp);
+    result.sequence = std::move(r.sequence);
+    result.format = "gpfile";
+    result.notes = std::move(r.notes);
+  } else if (lower_extension(input) == ".json") {
+    if (!options.contour_types.empty())
+      throw InvalidInput(ErrorCode::Usage, where, "contour types (--type) apply to GPFile folders only",
+                         "use --label to choose contours of a JSON file");
+    result.sequence = read_contours_json(input, options.stack);
+    result.format = "contour4d-json";
+  } else {
+    throw IoError(ErrorCode::Format, where, "unrecognised input (extension \"" + input.extension().string() + "\")",
+                  kSupported);
+  }
+  if (!options.label.empty()) {
+    result.sequence = select_label(result.sequence, options.label);
+    result.notes.push_back("label: only \"" + options.label + "\" kept");
+  }
+  return result;
+}
+
+}  // namespace c4d

@@ -1,0 +1,182 @@
+// model.c4d: the compact 4D model on disk (docs/compact.md). Explicit little-endian fields, so the
+// file is the same on every machine; the checksum catches truncation and bit rot before decoding.
+#include "contour4d/io/model_c4d.h"
+
+#include <cstring>
+#include <limits>
+
+#include "contour4d/core/errors.h"
+#include "contour4d/io/output_dir.h"
+
+namespace c4d {
+namespace {
+
+constexpr char kMagic[8] = {'C', '4', 'D', 'M', 'O', 'D', 'E', 'L'};
+constexpr std::size_t kHeader = 8 + 4 + 4 + 8 + 8;
+
+void put_u32(std::string& s, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) s.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+void put_u64(std::string& s, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) s.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+void put_f64(std::string& s, double d) {
+  std::uint64_t v;
+  std::memcpy(&v, &d, 8);
+  put_u64(s, v);
+}
+void put_block(std::string& s, const std::vector<std::uint8_t>& b) {
+  put_u64(s, b.size());
+  s.append(reinterpret_cast<const char*>(b.data()), b.size());
+}
+
+struct Reader {
+  std::string_view s;
+  std::size_t pos = 0;
+  std::string name;
+  void need(std::size_t n) {
+    if (n > s.size() - pos)
+      throw IoError(ErrorCode::Parse, {name}, "truncated model file (at byte " + std::to_string(pos) + ")",
+                    "the file is incomplete: run `contour4d pack` again");
+  }
+  std::uint64_t u(int bytes) {
+    need(static_cast<std::size_t>(bytes));
+    std::uint64_t v = 0;
+    for (int i = 0; i < bytes; ++i) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(s[pos + i])) << (8 * i);
+    pos += static_cast<std::size_t>(bytes);
+    return v;
+  }
+  std::uint32_t u32() { return static_cast<std::uint32_t>(u(4)); }
+  double f64() {
+    const std::uint64_t v = u(8);
+    double d;
+    std::memcpy(&d, &v, 8);
+    return d;
+  }
+  std::vector<std::uint8_t> block() {
+    const std::uint64_t n = u(8);
+    need(n <= s.size() ? static_cast<std::size_t>(n) : std::numeric_limits<std::size_t>::max());
+    std::vector<std::uint8_t> b(reinterpret_cast<const std::uint8_t*>(s.data() + pos),
+                                reinterpret_cast<const std::uint8_t*>(s.data() + pos + n));
+    pos += static_cast<std::size_t>(n);
+    return b;
+  }
+  std::uint64_t varint() {
+    std::uint64_t v = 0;
+    for (int shift = 0; shift < 64; shift += 7) {
+      const std::uint8_t b = static_cast<std::uint8_t>(u(1));
+      v |= static_cast<std::uint64_t>(b & 0x7f) << shift;
+      if ((b & 0x80) == 0) return v;
+    }
+    throw IoError(ErrorCode::Parse, {name}, "overlong varint", "the file is damaged: run `contour4d pack` again");
+  }
+};
+
+}  // namespace
+
+std::uint64_t fnv1a64(std::string_view bytes) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (char c : bytes) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string serialize_model_c4d(const CompactModel& m) {
+  std::string p;
+  put_u32(p, m.vertex_count);
+  put_u32(p, m.triangle_count);
+  put_u32(p, m.frame_count);
+  put_u32(p, m.neighbours);
+  for (double o : m.origin) put_f64(p, o);
+  put_f64(p, m.grid_step);
+  put_f64(p, m.motion_step);
+  put_f64(p, m.residual_step);
+  put_f64(p, m.tolerance);
+  for (double t : m.times_ms) put_f64(p, t);
+  put_u32(p, static_cast<std::uint32_t>(m.control.size()));
+  std::uint32_t last = 0;
+  for (std::size_t i = 0; i < m.control.size(); ++i) {  // increasing ids as varint gaps
+    std::uint64_t gap = i == 0 ? m.control[0] : m.control[i] - last - 1;
+    while (gap >= 0x80) {
+      p.push_back(static_cast<char>((gap & 0x7f) | 0x80));
+      gap >>= 7;
+    }
+    p.push_back(static_cast<char>(gap));
+    last = m.control[i];
+  }
+  put_block(p, m.indices);
+  put_block(p, m.positions);
+  put_block(p, m.motion);
+  for (const auto& c : m.corrections) put_block(p, c);
+
+  std::string out(kMagic, 8);
+  put_u32(out, kModelC4dVersion);
+  put_u32(out, 0);  // flags, reserved
+  put_u64(out, p.size());
+  put_u64(out, fnv1a64(p));
+  out += p;
+  return out;
+}
+
+CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
+  if (bytes.size() < kHeader || std::memcmp(bytes.data(), kMagic, 8) != 0)
+    throw IoError(ErrorCode::Format, {name}, "not a contour4d model file (bad magic)",
+                  "pass a model.c4d written by `contour4d pack`");
+  Reader h{bytes, 8, name};
+  const std::uint32_t version = h.u32();
+  if (version != kModelC4dVersion)
+    throw IoError(ErrorCode::Format, {name}, "model.c4d version " + std::to_string(version) + " is not supported (this build reads " +
+                      std::to_string(kModelC4dVersion) + ")",
+                  "pack the 4D mesh again with this contour4d");
+  h.u32();
+  const std::uint64_t size = h.u(8);
+  const std::uint64_t sum = h.u(8);
+  if (size != bytes.size() - kHeader)
+    throw IoError(ErrorCode::Parse, {name}, "payload is " + std::to_string(bytes.size() - kHeader) + " bytes, header says " + std::to_string(size),
+                  "the file is truncated or padded: run `contour4d pack` again");
+  const std::string_view payload = bytes.substr(kHeader);
+  if (fnv1a64(payload) != sum)
+    throw IoError(ErrorCode::Parse, {name}, "checksum mismatch", "the file is damaged: run `contour4d pack` again");
+  Reader r{payload, 0, name};
+  CompactModel m;
+  m.vertex_count = r.u32();
+  m.triangle_count = r.u32();
+  m.frame_count = r.u32();
+  m.neighbours = r.u32();
+  for (double& o : m.origin) o = r.f64();
+  m.grid_step = r.f64();
+  m.motion_step = r.f64();
+  m.residual_step = r.f64();
+  m.tolerance = r.f64();
+  r.need(static_cast<std::size_t>(m.frame_count) * 8);
+  for (std::uint32_t f = 0; f < m.frame_count; ++f) m.times_ms.push_back(r.f64());
+  const std::uint32_t nc = r.u32();
+  if (nc > m.vertex_count)
+    throw IoError(ErrorCode::Parse, {name}, "more control vertices than vertices", "the file is damaged: run `contour4d pack` again");
+  std::uint64_t id = 0;
+  for (std::uint32_t i = 0; i < nc; ++i) {
+    id = (i == 0 ? 0 : id + 1) + r.varint();
+    if (id >= m.vertex_count)
+      throw IoError(ErrorCode::Parse, {name}, "control vertex id out of range", "the file is damaged: run `contour4d pack` again");
+    m.control.push_back(static_cast<std::uint32_t>(id));
+  }
+  m.indices = r.block();
+  m.positions = r.block();
+  m.motion = r.block();
+  for (std::uint32_t f = 0; f < m.frame_count; ++f) m.corrections.push_back(r.block());
+  if (r.pos != payload.size())
+    throw IoError(ErrorCode::Parse, {name}, "trailing bytes after the last frame", "the file is damaged: run `contour4d pack` again");
+  return m;
+}
+
+void write_model_c4d(const std::filesystem::path& path, const CompactModel& model) {
+  write_file_atomic(path, serialize_model_c4d(model));
+}
+
+CompactModel read_model_c4d(const std::filesystem::path& path) {
+  return parse_model_c4d(read_file(path), path.string());
+}
+
+}  // namespace c4d

@@ -1,0 +1,372 @@
+// Mesh validity for the papers' claim of "a complete closed manifold" (Lim et al. 2014,
+// "3D Reconstruction") and for the checks: boundary edges, edge and vertex manifoldness,
+// consistent and outward orientation, components and genus from the Euler characteristic
+// (χ = V − E + F = 2 − 2g − b per component), self-intersections, degenerate and duplicate elements.
+//
+// The mesh is treated as a triangle soup with shared indices, not loaded into a halfedge
+// structure, because the faults we look for are exactly those a halfedge structure cannot hold.
+// Self-intersections follow the rule of CGAL's Polygon_mesh_processing::self_intersections (two
+// triangles intersect unless they only share a vertex or an edge), re-stated over vertex indices so
+// that non-manifold input is fine; box_self_intersection_d prunes pairs, Epick predicates are exact.
+#include "contour4d/metrics/topology.h"
+
+#include <algorithm>
+#include <numeric>
+#include <set>
+#include <tuple>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+#include <fmt/format.h>
+
+namespace c4d {
+namespace {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
+
+Point to_point(Vec3 p) { return {p.x, p.y, p.z}; }
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smallest index as root: deterministic
+  }
+};
+
+bool valid_triangle(const Triangle& t, std::size_t nv) {
+  return t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+}
+
+// One directed edge of a triangle, sorted by its undirected key.
+struct HalfEdge {
+  std::uint32_t lo, hi;  // undirected key
+  bool forward;          // traversed lo -> hi
+  std::size_t tri;
+};
+
+std::string plural(std::size_t n, const char* one, const char* many) {
+  return fmt::format("{} {}", n, n == 1 ? one : many);
+}
+
+// Do triangles i and j intersect other than in what they share? (CGAL PMP's rule, on indices.)
+bool triangles_intersect(const TriangleMesh& m, const Triangle& s, const Triangle& t) {
+  int shared_s[3], shared_t[3], n = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      if (s[a] == t[b]) {
+        shared_s[n] = a;
+        shared_t[n] = b;
+        ++n;
+      }
+  auto P = [&](std::uint32_t v) { return to_point(m.positions[v]); };
+  if (n == 3) return true;  // the same triangle twice
+  if (n == 2) {
+    // A shared edge: they overlap only when coplanar with the third corners on the same side.
+    const int c = 3 - shared_s[0] - shared_s[1], d = 3 - shared_t[0] - shared_t[1];
+    const Point pa = P(s[shared_s[0]]), pb = P(s[shared_s[1]]), pc = P(s[c]), pd = P(t[d]);
+    return CGAL::coplanar(pa, pb, pc, pd) && CGAL::coplanar_orientation(pa, pb, pc, pd) == CGAL::POSITIVE;
+  }
+  const Kernel::Triangle_3 ts(P(s[0]), P(s[1]), P(s[2])), tt(P(t[0]), P(t[1]), P(t[2]));
+  if (n == 1) {
+    // A shared vertex: they intersect elsewhere iff the edge opposite it in one crosses the other.
+    const int a = shared_s[0], b = shared_t[0];
+    const Kernel::Segment_3 es(P(s[(a + 1) % 3]), P(s[(a + 2) % 3])), et(P(t[(b + 1) % 3]), P(t[(b + 2) % 3]));
+    return CGAL::do_intersect(ts, et) || CGAL::do_intersect(tt, es);
+  }
+  return CGAL::do_intersect(ts, tt);
+}
+}  // namespace
+
+std::size_t count_self_intersections(const TriangleMesh& mesh, std::vector<std::pair<std::size_t, std::size_t>>* pairs,
+                                     std::size_t max_pairs_listed) {
+  const std::size_t nv = mesh.positions.size();
+  std::vector<Box> boxes;
+  boxes.reserve(mesh.triangles.size());
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const Triangle& t = mesh.triangles[i];
+    if (!valid_triangle(t, nv)) continue;
+    const Vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
+    const Point pa = to_point(a), pb = to_point(b), pc = to_point(c);
+    if (CGAL::collinear(pa, pb, pc)) continue;  // reported as degenerate, not as an intersection
+    boxes.emplace_back(pa.bbox() + pb.bbox() + pc.bbox(), i);
+  }
+  std::vector<const Box*> ptrs;
+  ptrs.reserve(boxes.size());
+  for (const Box& b : boxes) ptrs.push_back(&b);
+  std::size_t count = 0;
+  std::set<std::pair<std::size_t, std::size_t>> first;  // the smallest pairs: same list whatever the visiting order
+  auto callback = [&](const Box* x, const Box* y) {
+    const std::size_t i = std::min(x->info(), y->info()), j = std::max(x->info(), y->info());
+    if (!triangles_intersect(mesh, mesh.triangles[i], mesh.triangles[j])) return;
+    ++count;
+    if (pairs != nullptr && max_pairs_listed > 0) {
+      first.insert({i, j});
+      if (first.size() > max_pairs_listed) first.erase(std::prev(first.end()));
+    }
+  };
+  CGAL::box_self_intersection_d<CGAL::Sequential_tag>(ptrs.begin(), ptrs.end(), callback);
+  if (pairs != nullptr) pairs->assign(first.begin(), first.end());
+  return count;
+}
+
+TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& options) {
+  TopologyReport r;
+  const std::size_t nv = mesh.positions.size();
+  r.vertices = nv;
+  r.triangles = mesh.triangles.size();
+  if (mesh.triangles.empty()) {
+    r.faults.push_back("the mesh has no triangles");
+    r.genus = -1;
+    return r;
+  }
+
+  // Valid, degenerate and duplicate triangles.
+  std::vector<std::size_t> tris;  // indices of valid triangles
+  tris.reserve(mesh.triangles.size());
+  std::vector<std::array<std::uint32_t, 3>> sorted_keys;
+  std::vector<char> used(nv, 0);
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const Triangle& t = mesh.triangles[i];
+    if (!valid_triangle(t, nv)) {
+      ++r.invalid_triangles;
+      continue;
+    }
+    tris.push_back(i);
+    for (std::uint32_t v : t) used[v] = 1;
+    std::array<std::uint32_t, 3> k = t;
+    std::sort(k.begin(), k.end());
+    sorted_keys.push_back(k);
+    if (CGAL::collinear(to_point(mesh.positions[t[0]]), to_point(mesh.positions[t[1]]), to_point(mesh.positions[t[2]])))
+      ++r.degenerate_triangles;
+  }
+  std::sort(sorted_keys.begin(), sorted_keys.end());
+  for (std::size_t i = 1; i < sorted_keys.size(); ++i) r.duplicate_triangles += sorted_keys[i] == sorted_keys[i - 1];
+  r.unreferenced_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), 0));
+
+  // Duplicate vertices: equal positions after a lexicographic sort.
+  {
+    std::vector<std::uint32_t> order(nv);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const Vec3 p = mesh.positions[a], q = mesh.positions[b];
+      return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
+    });
+    for (std::size_t i = 1; i < order.size(); ++i) r.duplicate_vertices += mesh.positions[order[i]] == mesh.positions[order[i - 1]];
+  }
+
+  // Edges: sort the directed edges by undirected key; each run is one edge.
+  std::vector<HalfEdge> he;
+  he.reserve(3 * tris.size());
+  for (std::size_t i : tris) {
+    const Triangle& t = mesh.triangles[i];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      he.push_back({std::min(a, b), std::max(a, b), a < b, i});
+    }
+  }
+  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return std::tie(x.lo, x.hi, x.tri, x.forward) < std::tie(y.lo, y.hi, y.tri, y.forward);
+  });
+  UnionFind comp(mesh.triangles.size());
+  // Orientation graph: two-triangle edges; parity_link = true when the pair must differ in flip.
+  std::vector<std::vector<std::pair<std::size_t, bool>>> adj(mesh.triangles.size());
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary;
+  std::vector<std::size_t> edge_start;  // index into he of each edge's first half-edge
+  std::vector<std::size_t> edge_size;   // number of triangles on each edge
+  for (std::size_t s = 0; s < he.size();) {
+    std::size_t e = s;
+    while (e < he.size() && he[e].lo == he[s].lo && he[e].hi == he[s].hi) ++e;
+    const std::size_t n = e - s;
+    edge_start.push_back(s);
+    edge_size.push_back(n);
+    if (n == 1) boundary.push_back({he[s].lo, he[s].hi});
+    if (n > 2) ++r.nonmanifold_edges;
+    if (n == 2) {
+      const bool same_way = he[s].forward == he[s + 1].forward;
+      if (same_way) ++r.misoriented_edges;
+      adj[he[s].tri].push_back({he[s + 1].tri, same_way});
+      adj[he[s + 1].tri].push_back({he[s].tri, same_way});
+    }
+    for (std::size_t k = s + 1; k < e; ++k) comp.unite(he[s].tri, he[k].tri);
+    s = e;
+  }
+  r.edges = edge_start.size();
+  r.boundary_edges = boundary.size();
+
+  // Orientation: propagate a flip parity over two-triangle edges; the minority of each patch is
+  // "against its neighbours".
+  {
+    std::vector<int> parity(mesh.triangles.size(), -1);
+    std::vector<std::size_t> stack;
+    for (std::size_t seed : tris) {
+      if (parity[seed] >= 0) continue;
+      std::size_t count[2] = {0, 0};
+      parity[seed] = 0;
+      stack.push_back(seed);
+      while (!stack.empty()) {
+        const std::size_t t = stack.back();
+        stack.pop_back();
+        ++count[parity[t]];
+        for (const auto& [u, flip] : adj[t]) {
+          const int want = parity[t] ^ static_cast<int>(flip);
+          if (parity[u] < 0) {
+            parity[u] = want;
+            stack.push_back(u);
+          } else if (parity[u] != want) {
+            r.orientable = false;
+          }
+        }
+      }
+      r.flipped_triangles += std::min(count[0], count[1]);
+    }
+  }
+
+  // Vertex manifoldness: the triangles around a vertex must form one fan, i.e. be connected
+  // through edges incident to that vertex.
+  {
+    std::vector<std::size_t> start(nv + 1, 0);
+    for (std::size_t i : tris)
+      for (std::uint32_t v : mesh.triangles[i]) ++start[v + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::size_t> fan(start.back()), fill(start.begin(), start.end() - 1);
+    for (std::size_t i : tris)
+      for (std::uint32_t v : mesh.triangles[i]) fan[fill[v]++] = i;
+    std::vector<std::pair<std::uint32_t, std::size_t>> spokes;  // (other vertex, local triangle)
+    for (std::size_t v = 0; v < nv; ++v) {
+      const std::size_t d = start[v + 1] - start[v];
+      if (d < 2) continue;
+      UnionFind local(d);
+      spokes.clear();
+      for (std::size_t k = 0; k < d; ++k)
+        for (std::uint32_t w : mesh.triangles[fan[start[v] + k]])
+          if (w != v) spokes.push_back({w, k});
+      std::sort(spokes.begin(), spokes.end());
+      for (std::size_t k = 1; k < spokes.size(); ++k)
+        if (spokes[k].first == spokes[k - 1].first) local.unite(spokes[k].second, spokes[k - 1].second);
+      std::size_t fans = 0;
+      for (std::size_t k = 0; k < d; ++k) fans += local.find(k) == k;
+      if (fans > 1) ++r.nonmanifold_vertices;
+    }
+  }
+
+  // Components with their Euler characteristic and boundary loops.
+  {
+    std::vector<std::size_t> comp_of(mesh.triangles.size(), 0);
+    std::vector<long> comp_index(mesh.triangles.size(), -1);
+    for (std::size_t i : tris) {
+      const std::size_t root = comp.find(i);
+      if (comp_index[root] < 0) {
+        comp_index[root] = static_cast<long>(r.components.size());
+        r.components.emplace_back();
+      }
+      comp_of[i] = static_cast<std::size_t>(comp_index[root]);
+      ++r.components[comp_of[i]].triangles;
+    }
+    std::vector<char> comp_manifold(r.components.size(), 1);
+    for (std::size_t k = 0; k < edge_start.size(); ++k) {
+      const std::size_t c = comp_of[he[edge_start[k]].tri];
+      ++r.components[c].edges;
+      if (edge_size[k] > 2) comp_manifold[c] = 0;
+    }
+    // Vertices per component (a vertex shared by two components counts in both).
+    std::vector<std::pair<std::size_t, std::uint32_t>> cv;
+    cv.reserve(3 * tris.size());
+    for (std::size_t i : tris)
+      for (std::uint32_t v : mesh.triangles[i]) cv.push_back({comp_of[i], v});
+    std::sort(cv.begin(), cv.end());
+    cv.erase(std::unique(cv.begin(), cv.end()), cv.end());
+    for (const auto& [c, v] : cv) ++r.components[c].vertices;
+    // Boundary loops: connected groups of boundary edges.
+    UnionFind bl(nv);
+    for (const auto& [a, b] : boundary) bl.unite(a, b);
+    std::vector<std::pair<std::size_t, std::size_t>> loop_roots;  // (component, root vertex)
+    for (std::size_t k = 0; k < edge_start.size(); ++k)
+      if (edge_size[k] == 1) loop_roots.push_back({comp_of[he[edge_start[k]].tri], bl.find(he[edge_start[k]].lo)});
+    std::sort(loop_roots.begin(), loop_roots.end());
+    loop_roots.erase(std::unique(loop_roots.begin(), loop_roots.end()), loop_roots.end());
+    for (const auto& [c, root] : loop_roots) ++r.components[c].boundary_loops;
+    r.genus = (r.nonmanifold_vertices == 0 && r.orientable) ? 0 : -1;
+    for (std::size_t c = 0; c < r.components.size(); ++c) {
+      ComponentTopology& ct = r.components[c];
+      ct.euler = static_cast<long>(ct.vertices) - static_cast<long>(ct.edges) + static_cast<long>(ct.triangles);
+      const long twice_genus = 2 - ct.euler - static_cast<long>(ct.boundary_loops);
+      if (comp_manifold[c] && r.nonmanifold_vertices == 0 && r.orientable && twice_genus >= 0 && twice_genus % 2 == 0)
+        ct.genus = static_cast<int>(twice_genus / 2);
+      if (ct.genus < 0 || r.genus < 0)
+        r.genus = -1;
+      else
+        r.genus += ct.genus;
+    }
+  }
+
+  // Signed volume over the valid triangles (divergence theorem, centred for conditioning).
+  {
+    Vec3 ref{};
+    for (const Vec3& p : mesh.positions) ref += p;
+    if (nv > 0) ref = ref / static_cast<double>(nv);
+    double v = 0.0;
+    for (std::size_t i : tris) {
+      const Triangle& t = mesh.triangles[i];
+      v += dot(mesh.positions[t[0]] - ref, cross(mesh.positions[t[1]] - ref, mesh.positions[t[2]] - ref));
+    }
+    r.signed_volume = v / 6.0;
+  }
+
+  std::vector<std::pair<std::size_t, std::size_t>> first_pairs;
+  if (options.self_intersections) {
+    r.self_intersections = count_self_intersections(mesh, &first_pairs, 3);
+    r.self_intersections_checked = true;
+  }
+
+  // Faults, in words.
+  auto& f = r.faults;
+  if (r.invalid_triangles > 0)
+    f.push_back(plural(r.invalid_triangles, "invalid triangle", "invalid triangles") +
+                " (vertex index out of range or repeated); ignored by the other checks");
+  if (r.boundary_edges > 0) {
+    std::size_t loops = 0;
+    for (const ComponentTopology& c : r.components) loops += c.boundary_loops;
+    f.push_back(plural(r.boundary_edges, "boundary edge", "boundary edges") + " (" +
+                (loops == 1 ? std::string("a hole") : fmt::format("{} holes", loops)) + "): the mesh is not closed");
+  }
+  if (r.nonmanifold_edges > 0)
+    f.push_back(plural(r.nonmanifold_edges, "non-manifold edge", "non-manifold edges") + " (shared by more than two triangles)");
+  if (r.nonmanifold_vertices > 0)
+    f.push_back(plural(r.nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") +
+                " (its triangles form several separate fans)");
+  if (r.flipped_triangles > 0)
+    f.push_back(fmt::format("{} oriented against {} neighbours ({} traversed the same way by both triangles)",
+                            plural(r.flipped_triangles, "triangle", "triangles"), r.flipped_triangles == 1 ? "its" : "their",
+                            plural(r.misoriented_edges, "edge", "edges")));
+  else if (r.misoriented_edges > 0 || !r.orientable)
+    f.push_back(fmt::format("no consistent orientation exists ({} traversed the same way by both triangles)",
+                            plural(r.misoriented_edges, "edge", "edges")));
+  if (r.closed() && r.edge_manifold() && r.consistently_oriented() && !(r.signed_volume > 0.0))
+    f.push_back(fmt::format("the triangles face inward (signed volume {:.6g} mm³ <= 0)", r.signed_volume));
+  if (r.degenerate_triangles > 0)
+    f.push_back(plural(r.degenerate_triangles, "degenerate triangle", "degenerate triangles") + " (zero area)");
+  if (r.duplicate_triangles > 0)
+    f.push_back(plural(r.duplicate_triangles, "duplicate triangle", "duplicate triangles") + " (same three vertices)");
+  if (r.duplicate_vertices > 0)
+    f.push_back(plural(r.duplicate_vertices, "duplicate vertex", "duplicate vertices") + " (same position as another vertex)");
+  if (r.unreferenced_vertices > 0)
+    f.push_back(plural(r.unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") + " (used by no triangle)");
+  if (r.self_intersections > 0) {
+    std::string list;
+    for (const auto& [i, j] : first_pairs) list += fmt::format("{}{}–{}", list.empty() ? "" : ", ", i, j);
+    f.push_back(fmt::format("{} of triangles intersect (first: {})",
+                            plural(r.self_intersections, "pair", "pairs"), list));
+  }
+  return r;
+}
+
+}  // namespace c4d

@@ -1,0 +1,33 @@
+#pragma once
+// Private to src/metrics: exact point-to-surface distance behind a small interface, so that CGAL's
+// AABB tree types stay inside triangle_distance.cpp (they compile slowly).
+
+#include <memory>
+#include <vector>
+
+#include "contour4d/core/mesh.h"
+
+namespace c4d::metrics_internal {
+
+//! Distance from points to the triangles of one mesh: an AABB tree built once, queried many times.
+//! Zero-area triangles are left out of the tree (their points lie on their neighbours' edges).
+class TriangleDistance {
+ public:
+  explicit TriangleDistance(const TriangleMesh& mesh);
+  ~TriangleDistance();
+  TriangleDistance(const TriangleDistance&) = delete;
+  TriangleDistance& operator=(const TriangleDistance&) = delete;
+
+  //! False when the mesh has no triangle of non-zero area (every distance is then +inf).
+  bool valid() const;
+  //! Euclidean distance (mm) from p to the closest point of the surface.
+  double distance(Vec3 p) const;
+  //! distance() for every point, in order.
+  std::vector<double> distances(const std::vector<Vec3>& points) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace c4d::metrics_internal

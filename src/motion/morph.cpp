@@ -1,0 +1,411 @@
+// Lim et al. 2014, "4D Morphing of the Heart Model" and "Contour Matching" (Fig. 7); Miara et al.
+// §III.E (sub-mesh lifetimes, Fig. 14).
+//
+// Per frame t, the previous mesh is cut by every slice plane; each section loop that matches one
+// contour of frame t one-to-one (similarity index over the threshold both ways) is mapped onto it
+// (contour matching) and the matched points drive a Hardy-multiquadric RBF (eq. 9) that moves the
+// whole mesh. Slices whose contours split, merge, appear or vanish give no constraint; they are
+// reported as events. The paper resolves them with a sine-shaped vertical pre-deformation; our
+// default instead projects the mesh onto frame t's own surface (reconstructed from its contours,
+// branching included), with a Laplacian term that keeps the previous frame's shape (Sorkine et al.,
+// "Laplacian Surface Editing", 2004) — its matrix depends only on the connectivity, so it is
+// factored once for the whole sequence — followed by tangential relaxation that keeps triangle
+// quality (vertices move within the surface, so the contours stay on it).
+#include "contour4d/motion/morph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <Eigen/Sparse>
+#include <tbb/parallel_for.h>
+
+#include "contour4d/connect/similarity.h"
+#include "contour4d/core/errors.h"
+#include "contour4d/motion/contour_matching.h"
+#include "contour4d/motion/rbf.h"
+#include "surface_projection_internal.h"
+
+namespace c4d {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+std::vector<std::vector<std::uint32_t>> neighbours(std::size_t n, const std::vector<Triangle>& tris) {
+  std::vector<std::set<std::uint32_t>> s(n);
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      s[t[static_cast<std::size_t>(k)]].insert(t[static_cast<std::size_t>((k + 1) % 3)]);
+      s[t[static_cast<std::size_t>((k + 1) % 3)]].insert(t[static_cast<std::size_t>(k)]);
+    }
+  std::vector<std::vector<std::uint32_t>> out(n);
+  for (std::size_t i = 0; i < n; ++i) out[i].assign(s[i].begin(), s[i].end());
+  return out;
+}
+
+// Uniform ("umbrella") Laplacian: (L x)_i = x_i − mean of the neighbours of i.
+SparseMatrix uniform_laplacian(const std::vector<std::vector<std::uint32_t>>& nb) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t i = 0; i < nb.size(); ++i) {
+    const auto I = static_cast<int>(i);
+    t.emplace_back(I, I, 1.0);
+    for (std::uint32_t j : nb[i]) t.emplace_back(I, static_cast<int>(j), -1.0 / static_cast<double>(nb[i].size()));
+  }
+  SparseMatrix L(static_cast<int>(nb.size()), static_cast<int>(nb.size()));
+  L.setFromTriplets(t.begin(), t.end());
+  return L;
+}
+
+Eigen::MatrixXd to_matrix(const std::vector<Vec3>& p) {
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(p.size()), 3);
+  for (std::size_t i = 0; i < p.size(); ++i) m.row(static_cast<Eigen::Index>(i)) << p[i].x, p[i].y, p[i].z;
+  return m;
+}
+
+std::vector<Vec3> from_matrix(const Eigen::MatrixXd& m) {
+  std::vector<Vec3> p(static_cast<std::size_t>(m.rows()));
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto I = static_cast<Eigen::Index>(i);
+    p[i] = {m(I, 0), m(I, 1), m(I, 2)};
+  }
+  return p;
+}
+
+std::vector<Vec2> flatten(const Plane& pl, const std::vector<Vec3>& pts) {
+  std::vector<Vec2> out;
+  out.reserve(pts.size());
+  for (const Vec3& p : pts) out.push_back(to_plane(pl, p));
+  return out;
+}
+
+const Slice* find_slice(const Frame& f, int id) {
+  for (const Slice& s : f.slices)
+    if (s.id == id) return &s;
+  return nullptr;
+}
+
+std::string event_kind(int before, int after) {
+  if (before == 0) return "appear";
+  if (after == 0) return "vanish";
+  if (before == 1 && after > 1) return "split";
+  if (before > 1 && after == 1) return "merge";
+  return "change";
+}
+
+// A loop of frame-0 vertices lying on one slice plane: the mesh's copy of an input contour.
+struct Chain {
+  int slice = 0;
+  Plane plane;
+  std::vector<std::uint32_t> loop;
+};
+
+// Frame 0's contour chains: edges with both ends on a slice plane whose two triangles are not
+// both in that plane (so flat caps' interiors are excluded), chained into closed loops.
+std::vector<Chain> find_chains(const Sequence& seq, const TriangleMesh& mesh) {
+  std::map<int, const Slice*> planes;
+  for (const Frame& f : seq.frames)
+    for (const Slice& s : f.slices) planes.emplace(s.id, &s);
+  double scale = 1.0;
+  for (const Vec3& p : mesh.positions) scale = std::max(scale, std::abs(dot(p, seq.normal)));
+  const double tol = 1e-7 * scale;
+  std::vector<Chain> chains;
+  for (const auto& [id, any] : planes) {
+    const Plane pl = slice_plane(seq, *any);
+    std::vector<char> on(mesh.positions.size());
+    for (std::size_t i = 0; i < on.size(); ++i) on[i] = std::abs(signed_distance(pl, mesh.positions[i])) < tol;
+    // On-plane edges of triangles that are not entirely on the plane, oriented as the triangle
+    // above the plane runs them (a triangle below runs the same edge the other way).
+    std::map<std::uint32_t, std::vector<std::uint32_t>> succ;
+    for (const Triangle& t : mesh.triangles) {
+      if (on[t[0]] && on[t[1]] && on[t[2]]) continue;
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+        const std::uint32_t c = t[static_cast<std::size_t>((k + 2) % 3)];
+        if (!on[a] || !on[b]) continue;
+        if (signed_distance(pl, mesh.positions[c]) < 0) std::swap(a, b);
+        auto& s = succ[a];
+        if (std::find(s.begin(), s.end(), b) == s.end()) s.push_back(b);
+      }
+    }
+    std::set<std::uint32_t> used;
+    for (const auto& [v0, unused] : succ) {
+      if (used.count(v0)) continue;
+      std::vector<std::uint32_t> loop;
+      std::uint32_t v = v0;
+      bool closed = false;
+      while (true) {
+        if (used.count(v)) {
+          closed = (v == v0);
+          break;
+        }
+        used.insert(v);
+        loop.push_back(v);
+        const auto it = succ.find(v);
+        if (it == succ.end() || it->second.size() != 1) break;  // touching contours: not a simple loop
+        v = it->second.front();
+      }
+      if (closed && loop.size() >= 3) chains.push_back({id, pl, std::move(loop)});
+    }
+  }
+  return chains;
+}
+
+// Matches the chains (at their current positions) to the contours of `frame`, one-to-one per slice;
+// fills `target` for every vertex of a matched chain. Reports slices whose contour count changed.
+void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const std::vector<Vec3>& x, int frame,
+                  const MorphOptions& opt, double pin_spacing, std::vector<std::pair<std::uint32_t, Vec3>>& targets,
+                  MorphFrameReport& fr, std::vector<SliceEvent>& events, std::map<int, int>& previous_counts) {
+  std::map<int, std::vector<std::size_t>> by_slice;
+  for (std::size_t c = 0; c < chains.size(); ++c) by_slice[chains[c].slice].push_back(c);
+  const Frame& target = seq.frames[static_cast<std::size_t>(frame)];
+  std::map<int, int> counts;
+  for (const Slice& s : target.slices) counts[s.id] = static_cast<int>(s.contours.size());
+  for (const auto& [id, n] : counts)
+    if (previous_counts[id] != n) events.push_back({frame, id, event_kind(previous_counts[id], n), previous_counts[id], n});
+  for (const auto& [id, n] : previous_counts)
+    if (n > 0 && !counts.count(id)) events.push_back({frame, id, "vanish", n, 0});
+  previous_counts = counts;
+
+  for (const auto& [id, idx] : by_slice) {
+    const Slice* ts = find_slice(target, id);
+    if (!ts) continue;
+    const Plane& pl = chains[idx.front()].plane;
+    std::vector<std::vector<Vec2>> a, b;
+    for (std::size_t c : idx) {
+      std::vector<Vec3> pts;
+      for (std::uint32_t v : chains[c].loop) pts.push_back(x[v]);
+      a.push_back(flatten(pl, pts));
+    }
+    for (const Contour& c : ts->contours) b.push_back(flatten(pl, c.points));
+    std::vector<std::vector<double>> sim(a.size(), std::vector<double>(b.size()));
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t j = 0; j < b.size(); ++j) sim[i][j] = contour_similarity(a[i], b[j]);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      // One-to-one: i's only partner over the threshold is j, and j's only partner is i.
+      int partner = -1, count = 0;
+      for (std::size_t j = 0; j < b.size(); ++j)
+        if (sim[i][j] > opt.threshold) {
+          partner = static_cast<int>(j);
+          ++count;
+        }
+      if (count != 1) continue;
+      int back = 0;
+      for (std::size_t k = 0; k < a.size(); ++k) back += sim[k][static_cast<std::size_t>(partner)] > opt.threshold;
+      if (back != 1) continue;
+      const ContourMatch m = match_contour(a[i], b[static_cast<std::size_t>(partner)]);
+      const Chain& ch = chains[idx[i]];
+      // A contour that shrank would crowd its chain: pin every stride-th vertex only, so pinned
+      // points stay about pin_spacing apart and the others relax on the surface.
+      double len = 0;
+      for (std::size_t k = 0; k < m.targets.size(); ++k) len += norm(m.targets[(k + 1) % m.targets.size()] - m.targets[k]);
+      const double spacing = len / static_cast<double>(std::max<std::size_t>(1, ch.loop.size()));
+      const std::size_t stride =
+          spacing > 0 ? std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(pin_spacing / spacing - 1e-9))) : 1;
+      for (std::size_t k = 0; k < ch.loop.size(); k += stride)
+        if (stride == 1 || k + stride / 2 < ch.loop.size())
+          targets.push_back({ch.loop[k], from_plane(pl, m.targets[k])});
+      ++fr.matched;
+    }
+  }
+}
+
+// Adds the vertex farthest from the sources' plane as a fixed point when all sources are coplanar
+// (the paper's "far point"), so the RBF system stays regular.
+void add_far_point(const std::vector<Vec3>& verts, const Vec3& normal, std::vector<Vec3>& src, std::vector<Vec3>& dst) {
+  if (src.empty()) return;
+  double lo = 1e300, hi = -1e300;
+  for (const Vec3& p : src) {
+    lo = std::min(lo, dot(p, normal));
+    hi = std::max(hi, dot(p, normal));
+  }
+  if (hi - lo > 1e-6) return;
+  std::size_t best = 0;
+  double far = -1;
+  for (std::size_t i = 0; i < verts.size(); ++i) {
+    const double d = std::abs(dot(verts[i], normal) - lo);
+    if (d > far) {
+      far = d;
+      best = i;
+    }
+  }
+  src.push_back(verts[best]);
+  dst.push_back(verts[best]);
+}
+
+struct Projector {
+  const SurfaceProjector& surface;
+  std::vector<Vec3> project(const std::vector<Vec3>& x, std::vector<Vec3>* normals = nullptr) const {
+    std::vector<Vec3> p(x.size());
+    if (normals) normals->resize(x.size());
+    tbb::parallel_for(std::size_t(0), x.size(), [&](std::size_t i) {
+      p[i] = surface.closest(x[i], normals ? &(*normals)[i] : nullptr);
+    });
+    return p;
+  }
+};
+
+}  // namespace
+
+std::vector<SubMeshLifetime> submesh_lifetimes(const Sequence& seq) {
+  std::map<int, double> offsets;  // slice id -> offset
+  for (const Frame& f : seq.frames)
+    for (const Slice& s : f.slices) offsets.emplace(s.id, s.offset);
+  std::vector<std::pair<double, int>> order;
+  for (const auto& [id, off] : offsets) order.push_back({off, id});
+  std::sort(order.begin(), order.end());
+  std::vector<SubMeshLifetime> out;
+  for (std::size_t k = 0; k + 1 < order.size(); ++k) {
+    const int lo = order[k].second, hi = order[k + 1].second;
+    SubMeshLifetime cur;
+    for (std::size_t t = 0; t < seq.frames.size(); ++t) {
+      const Slice* a = find_slice(seq.frames[t], lo);
+      const Slice* b = find_slice(seq.frames[t], hi);
+      const int na = a ? static_cast<int>(a->contours.size()) : 0, nb = b ? static_cast<int>(b->contours.size()) : 0;
+      const int ti = static_cast<int>(t);
+      if (t > 0 && na == cur.contours_below && nb == cur.contours_above) {
+        cur.last_frame = ti;
+        continue;
+      }
+      if (t > 0 && (cur.contours_below > 0 || cur.contours_above > 0)) out.push_back(cur);
+      cur = {lo, hi, ti, ti, na, nb};
+    }
+    if (cur.contours_below > 0 || cur.contours_above > 0) out.push_back(cur);
+  }
+  return out;
+}
+
+MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, const std::vector<TriangleMesh>& surfaces,
+                            const MorphOptions& opt, MorphReport* report) {
+  const std::size_t frames = seq.frames.size();
+  MeshSequence out;
+  out.triangles = frame0.triangles;
+  out.positions.push_back(frame0.positions);
+  for (const Frame& f : seq.frames) out.times_ms.push_back(f.time_ms);
+  MorphReport local;
+  MorphReport& rep = report ? *report : local;
+  rep.frames.assign(frames, {});
+  rep.submeshes = submesh_lifetimes(seq);
+  const bool project = opt.method == MorphMethod::RbfProject;
+  if (project && surfaces.size() != frames)
+    throw SolverError(ErrorCode::Internal, {}, "morph_sequence: RbfProject needs one surface per frame");
+
+  const std::size_t nv = frame0.positions.size();
+  const auto nb = neighbours(nv, frame0.triangles);
+  const std::vector<Chain> chains = find_chains(seq, frame0);
+  // Pinned chain vertices are kept at least this far apart (a fraction of the median edge).
+  std::vector<double> edge_lengths;
+  for (const Triangle& tri : frame0.triangles)
+    edge_lengths.push_back(distance(frame0.positions[tri[0]], frame0.positions[tri[1]]));
+  std::nth_element(edge_lengths.begin(), edge_lengths.begin() + static_cast<std::ptrdiff_t>(edge_lengths.size() / 2), edge_lengths.end());
+  const double pin_spacing = edge_lengths.empty() ? 0.0 : opt.pin_spacing * edge_lengths[edge_lengths.size() / 2];
+  std::map<int, int> counts;
+  for (const Slice& s0 : seq.frames.front().slices) counts[s0.id] = static_cast<int>(s0.contours.size());
+  SparseMatrix LtL;
+  if (project && frames > 1) {
+    const SparseMatrix L = uniform_laplacian(nb);
+    LtL = SparseMatrix(L.transpose() * L);
+  }
+  // The system W + αLᵀL depends on the connectivity and on which vertices are pinned to contours:
+  // it is factored again only when that set changes (topology events), else reused.
+  Eigen::SimplicialLDLT<SparseMatrix> solver;
+  std::vector<char> factored_for;
+  const double pin_weight = 1e8;
+
+  for (std::size_t t = 1; t < frames; ++t) {
+    const std::vector<Vec3>& prev = out.positions.back();
+    std::vector<Vec3> x = prev;
+    MorphFrameReport& fr = rep.frames[t];
+    std::vector<std::pair<std::uint32_t, Vec3>> pins;
+    match_chains(seq, chains, prev, static_cast<int>(t), opt, pin_spacing, pins, fr, rep.events, counts);
+
+    // 1. The paper's RBF from the matched chain points (subsampled as sources).
+    std::vector<Vec3> src, dst;
+    const std::size_t stride = std::max<std::size_t>(1, pins.size() / std::max<std::size_t>(1, static_cast<std::size_t>(opt.sources_per_contour) * std::max<std::size_t>(1, static_cast<std::size_t>(fr.matched))));
+    for (std::size_t k = 0; k < pins.size(); k += stride) {
+      src.push_back(prev[pins[k].first]);
+      dst.push_back(pins[k].second);
+    }
+    add_far_point(x, seq.normal, src, dst);
+    fr.sources = static_cast<int>(src.size());
+    if (!src.empty()) {
+      try {
+        deform_rbf(x, src, dst, project ? 1 : opt.rbf_steps);
+      } catch (const SolverError&) {
+        if (!project) throw;
+        x = prev;  // the projection below still fits the frame
+      }
+    }
+    std::vector<char> pinned(nv, 0);
+    for (const auto& [v, p] : pins) {
+      pinned[v] = 1;
+      x[v] = p;
+    }
+
+    if (project) {
+      // 2. Laplacian-regularised projection onto the frame's own surface; pinned vertices held on
+      //    their contour points.
+      const SurfaceProjector surface(surfaces[t]);
+      const Projector proj{surface};
+      if (pinned != factored_for) {
+        SparseMatrix W(static_cast<int>(nv), static_cast<int>(nv));
+        std::vector<Eigen::Triplet<double>> w;
+        for (std::size_t i = 0; i < nv; ++i) w.emplace_back(static_cast<int>(i), static_cast<int>(i), pinned[i] ? pin_weight : 1.0);
+        W.setFromTriplets(w.begin(), w.end());
+        solver.compute(SparseMatrix(W + opt.stiffness * LtL));
+        if (solver.info() != Eigen::Success)
+          throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
+                            "failed to factor the deformation system");
+        factored_for = pinned;
+      }
+      const Eigen::MatrixXd ref_term = opt.stiffness * (LtL * to_matrix(x));
+      for (int it = 0; it < opt.projection_iterations; ++it) {
+        std::vector<Vec3> p = proj.project(x);
+        for (std::size_t i = 0; i < nv; ++i)
+          if (pinned[i]) p[i] = pin_weight * x[i];
+        x = from_matrix(solver.solve(to_matrix(p) + ref_term));
+        for (const auto& [v, q] : pins) x[v] = q;
+      }
+      std::vector<Vec3> p = proj.project(x);
+      double sum = 0, mx = 0;
+      for (std::size_t i = 0; i < nv; ++i) {
+        if (pinned[i]) continue;
+        const double d = distance(p[i], x[i]);
+        sum += d;
+        mx = std::max(mx, d);
+        x[i] = p[i];
+      }
+      fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
+      fr.projection_max = mx;
+      // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
+      for (int r = 0; r < opt.relax_iterations; ++r) {
+        std::vector<Vec3> normals;
+        (void)proj.project(x, &normals);
+        for (int sweep = 0; sweep < opt.relax_sweeps; ++sweep) {
+          std::vector<Vec3> moved = x;
+          tbb::parallel_for(std::size_t(0), nv, [&](std::size_t i) {
+            if (pinned[i]) return;
+            Vec3 c{};
+            for (std::uint32_t j : nb[i]) c += x[j];
+            c = c / static_cast<double>(std::max<std::size_t>(1, nb[i].size()));
+            Vec3 d = c - x[i];
+            d -= dot(d, normals[i]) * normals[i];
+            moved[i] = x[i] + opt.relax_step * d;
+          });
+          x = std::move(moved);
+        }
+        std::vector<Vec3> q = proj.project(x);
+        for (std::size_t i = 0; i < nv; ++i)
+          if (!pinned[i]) x[i] = q[i];
+      }
+    }
+    for (const Vec3& p : x)
+      if (!is_finite(p))
+        throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
+                          "the deformation produced non-finite positions");
+    out.positions.push_back(std::move(x));
+  }
+  return out;
+}
+
+}  // namespace c4d

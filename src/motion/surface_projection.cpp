@@ -1,0 +1,45 @@
+// Closest-point queries with CGAL's AABB tree (CGAL User Manual, "3D Fast Intersection and Distance
+// Computation"), on a triangle soup kept alongside so the hit triangle's normal is known.
+#include "surface_projection_internal.h"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <vector>
+
+namespace c4d {
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Iterator = std::vector<K::Triangle_3>::const_iterator;
+using Primitive = CGAL::AABB_triangle_primitive<K, Iterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+}  // namespace
+
+struct SurfaceProjector::Impl {
+  std::vector<K::Triangle_3> triangles;
+  std::vector<Vec3> normals;
+  Tree tree;
+};
+
+SurfaceProjector::SurfaceProjector(const TriangleMesh& s) : impl_(std::make_unique<Impl>()) {
+  impl_->triangles.reserve(s.triangles.size());
+  for (const Triangle& t : s.triangles) {
+    const Vec3 a = s.positions[t[0]], b = s.positions[t[1]], c = s.positions[t[2]];
+    impl_->triangles.emplace_back(K::Point_3(a.x, a.y, a.z), K::Point_3(b.x, b.y, b.z), K::Point_3(c.x, c.y, c.z));
+    impl_->normals.push_back(normalized(cross(b - a, c - a)));
+  }
+  impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
+  impl_->tree.accelerate_distance_queries();
+}
+
+SurfaceProjector::~SurfaceProjector() = default;
+
+Vec3 SurfaceProjector::closest(Vec3 p, Vec3* normal) const {
+  const auto hit = impl_->tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
+  if (normal) *normal = impl_->normals[static_cast<std::size_t>(hit.second - impl_->triangles.begin())];
+  return {hit.first.x(), hit.first.y(), hit.first.z()};
+}
+
+}  // namespace c4d

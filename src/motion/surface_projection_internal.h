@@ -1,0 +1,23 @@
+#pragma once
+// Closest points on a triangle mesh (CGAL AABB tree); private to the motion stage.
+#include <memory>
+
+#include "contour4d/core/mesh.h"
+
+namespace c4d {
+
+class SurfaceProjector {
+ public:
+  explicit SurfaceProjector(const TriangleMesh& surface);
+  ~SurfaceProjector();
+  SurfaceProjector(const SurfaceProjector&) = delete;
+  SurfaceProjector& operator=(const SurfaceProjector&) = delete;
+  //! Closest point of the surface to p; `normal` (if given) gets the unit normal of its triangle.
+  Vec3 closest(Vec3 p, Vec3* normal = nullptr) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace c4d

@@ -1,0 +1,431 @@
+// Headless playback of a 4D mesh, classical against compact (Miara et al. §IV, Table II: the
+// classical method sends each frame's high-resolution mesh to the GPU; the new one sends the base
+// mesh and displacement data once and only selects the time per frame).
+//
+// The context comes from EGL without a window: EGL_EXT_platform_device first (a GPU, or Mesa's
+// software device), then EGL_MESA_platform_surfaceless, then the default display; all GL entry points
+// come from glvnd's libOpenGL. Normals come from screen-space derivatives, so both paths shade alike.
+#include "contour4d/render/renderer.h"
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "contour4d/core/errors.h"
+
+namespace c4d {
+namespace {
+
+[[noreturn]] void fail(const std::string& what) {
+  throw Error(ErrorCode::Internal, {}, "headless OpenGL: " + what,
+              "needs EGL with OpenGL 4.3 core: install Mesa (libegl-mesa0, libgl1-mesa-dri) and try "
+              "LIBGL_ALWAYS_SOFTWARE=1 EGL_PLATFORM=surfaceless; on a GPU check its EGL driver");
+}
+
+using Mat4 = std::array<float, 16>;  // column-major
+
+const char* kFragment = R"(#version 430 core
+in vec3 vpos;
+uniform vec3 color;
+out vec4 frag;
+void main() {
+  vec3 n = normalize(cross(dFdx(vpos), dFdy(vpos)));
+  float lambert = abs(n.z);                  // headlight along the view axis
+  frag = vec4(color * (0.15 + 0.85 * lambert), 1.0);
+}
+)";
+
+const char* kClassicalVertex = R"(#version 430 core
+layout(location = 0) in vec3 pos;
+uniform mat4 mv;
+uniform mat4 proj;
+out vec3 vpos;
+void main() {
+  vec4 p = mv * vec4(pos, 1.0);
+  vpos = p.xyz;
+  gl_Position = proj * p;
+}
+)";
+
+const char* kCompactVertex = R"(#version 430 core
+layout(location = 0) in vec3 base;
+layout(location = 1) in uvec4 ids0;
+layout(location = 2) in uvec4 ids1;
+layout(location = 3) in vec4 w0;
+layout(location = 4) in vec4 w1;
+uniform samplerBuffer motion;   // control displacement, texel frame * nc + control
+uniform int nc;
+uniform ivec4 frames;           // up to four frames blended for the current time
+uniform vec4 fw;                // their weights (linear: two, Catmull-Rom: four)
+uniform mat4 mv;
+uniform mat4 proj;
+out vec3 vpos;
+vec3 disp(int f) {
+  int o = f * nc;
+  vec3 d = vec3(0.0);
+  for (int j = 0; j < 4; ++j) d += w0[j] * texelFetch(motion, o + int(ids0[j])).xyz;
+  for (int j = 0; j < 4; ++j) d += w1[j] * texelFetch(motion, o + int(ids1[j])).xyz;
+  return d;
+}
+void main() {
+  vec3 p = base;
+  for (int k = 0; k < 4; ++k) if (fw[k] != 0.0) p += fw[k] * disp(frames[k]);
+  vec4 q = mv * vec4(p, 1.0);
+  vpos = q.xyz;
+  gl_Position = proj * q;
+}
+)";
+
+GLuint compile(GLenum type, const char* src) {
+  const GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &src, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    fail(std::string("shader compilation failed: ") + log);
+  }
+  return s;
+}
+
+GLuint link(const char* vs, const char* fs) {
+  const GLuint p = glCreateProgram();
+  const GLuint a = compile(GL_VERTEX_SHADER, vs), b = compile(GL_FRAGMENT_SHADER, fs);
+  glAttachShader(p, a);
+  glAttachShader(p, b);
+  glLinkProgram(p);
+  glDeleteShader(a);
+  glDeleteShader(b);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    fail(std::string("program link failed: ") + log);
+  }
+  return p;
+}
+
+}  // namespace
+
+struct OffscreenRenderer::Impl {
+  RenderOptions opt;
+  EGLDisplay dpy = EGL_NO_DISPLAY;
+  EGLContext ctx = EGL_NO_CONTEXT;
+  GLuint fbo = 0, color = 0, depth = 0;
+  GLuint classical_prog = 0, compact_prog = 0;
+  GLuint vao = 0, vbo = 0, ebo = 0, wbo = 0, tbo = 0, tex = 0;
+  std::size_t index_count = 0;
+  MeshSequence frames;      // classical: all frames on the CPU
+  std::vector<float> staging;
+  std::vector<double> times;  // compact
+  std::size_t nc = 0;
+  Mat4 mv{}, proj{};
+  Vec3 center{};
+
+  void fit_camera(const std::vector<std::vector<Vec3>>& all) {
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (const auto& f : all)
+      for (const Vec3& p : f)
+        for (int c = 0; c < 3; ++c) {
+          lo[c] = std::min(lo[c], p[c]);
+          hi[c] = std::max(hi[c], p[c]);
+        }
+    center = 0.5 * (lo + hi);
+    const double r = std::max(0.5 * norm(hi - lo), 1e-6);
+    const Vec3 d = normalized(opt.view_direction);
+    Vec3 up{0, 0, 1};  // superior up
+    if (std::abs(dot(up, d)) > 0.99) up = {0, -1, 0};
+    const Vec3 s = normalized(cross(d, up));
+    const Vec3 u = cross(s, d);
+    const Vec3 eye = -2.5 * r * d;  // positions are uploaded relative to the centre
+    mv = {float(s.x), float(u.x), float(-d.x), 0, float(s.y), float(u.y), float(-d.y), 0,
+          float(s.z), float(u.z), float(-d.z), 0, float(-dot(s, eye)), float(-dot(u, eye)), float(dot(d, eye)), 1};
+    const float aspect = float(opt.width) / float(opt.height);
+    const float n = float(1.5 * r * 0.5), fa = float(3.5 * r + r);
+    const float hr = float(r * 1.05);
+    if (opt.perspective) {
+      const float t = hr / float(2.5 * r) * n * 1.1f;
+      proj = {n / (t * aspect), 0, 0, 0, 0, n / t, 0, 0, 0, 0, -(fa + n) / (fa - n), -1, 0, 0, -2 * fa * n / (fa - n), 0};
+    } else {
+      proj = {1.0f / (hr * aspect), 0, 0, 0, 0, 1.0f / hr, 0, 0, 0, 0, -2.0f / (fa - n), 0, 0, 0, -(fa + n) / (fa - n), 1};
+    }
+  }
+
+  void set_common(GLuint prog) {
+    glUseProgram(prog);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "mv"), 1, GL_FALSE, mv.data());
+    glUniformMatrix4fv(glGetUniformLocation(prog, "proj"), 1, GL_FALSE, proj.data());
+    glUniform3fv(glGetUniformLocation(prog, "color"), 1, opt.color);
+  }
+
+  void reset_buffers() {
+    const GLuint bufs[] = {vbo, ebo, wbo, tbo};
+    for (GLuint b : bufs)
+      if (b) glDeleteBuffers(1, &b);
+    vbo = ebo = wbo = tbo = 0;
+    if (tex) glDeleteTextures(1, &tex);
+    tex = 0;
+    if (vao) glDeleteVertexArrays(1, &vao);
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+  }
+
+  void begin_frame() {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, opt.width, opt.height);
+    glClearColor(1, 1, 1, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
+};
+
+OffscreenRenderer::OffscreenRenderer(const RenderOptions& options) : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.opt = options;
+  if (options.width <= 0 || options.height <= 0 || options.width > 16384 || options.height > 16384)
+    throw InvalidInput(ErrorCode::Usage, {}, "image size out of range", "use e.g. --size 640x480");
+  auto get_platform_display =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  std::vector<EGLDisplay> candidates;
+  if (get_platform_display && query_devices) {
+    EGLDeviceEXT devices[8];
+    EGLint n = 0;
+    if (query_devices(8, devices, &n))
+      for (EGLint i = 0; i < n; ++i) candidates.push_back(get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
+  }
+  if (get_platform_display) candidates.push_back(get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
+  candidates.push_back(eglGetDisplay(EGL_DEFAULT_DISPLAY));
+  std::string tried;
+  for (EGLDisplay d : candidates) {
+    if (d == EGL_NO_DISPLAY) continue;
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(d, &major, &minor)) continue;
+    if (!eglBindAPI(EGL_OPENGL_API)) {
+      eglTerminate(d);
+      continue;
+    }
+    const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLConfig cfg = nullptr;
+    EGLint ncfg = 0;
+    eglChooseConfig(d, cfg_attr, &cfg, 1, &ncfg);
+    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                               EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    EGLContext c = eglCreateContext(d, ncfg > 0 ? cfg : nullptr, EGL_NO_CONTEXT, ctx_attr);
+    if (c != EGL_NO_CONTEXT && eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
+      s.dpy = d;
+      s.ctx = c;
+      break;
+    }
+    tried += " (EGL error 0x" + std::to_string(eglGetError()) + ")";
+    if (c != EGL_NO_CONTEXT) eglDestroyContext(d, c);
+    eglTerminate(d);
+  }
+  if (s.ctx == EGL_NO_CONTEXT) fail("no EGL display could create an OpenGL 4.3 core context" + tried);
+
+  glGenFramebuffers(1, &s.fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, s.fbo);
+  glGenRenderbuffers(1, &s.color);
+  glBindRenderbuffer(GL_RENDERBUFFER, s.color);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, options.width, options.height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, s.color);
+  glGenRenderbuffers(1, &s.depth);
+  glBindRenderbuffer(GL_RENDERBUFFER, s.depth);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, options.width, options.height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s.depth);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) fail("framebuffer incomplete");
+  glEnable(GL_DEPTH_TEST);
+  s.classical_prog = link(kClassicalVertex, kFragment);
+  s.compact_prog = link(kCompactVertex, kFragment);
+}
+
+OffscreenRenderer::~OffscreenRenderer() {
+  Impl& s = *impl_;
+  if (s.ctx != EGL_NO_CONTEXT) {
+    s.reset_buffers();
+    glDeleteVertexArrays(1, &s.vao);
+    glDeleteProgram(s.classical_prog);
+    glDeleteProgram(s.compact_prog);
+    glDeleteRenderbuffers(1, &s.color);
+    glDeleteRenderbuffers(1, &s.depth);
+    glDeleteFramebuffers(1, &s.fbo);
+    eglMakeCurrent(s.dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(s.dpy, s.ctx);
+    eglTerminate(s.dpy);
+    eglReleaseThread();
+  }
+}
+
+std::string OffscreenRenderer::description() const {
+  const auto* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const auto* v = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+  return std::string(r ? r : "?") + ", OpenGL " + (v ? v : "?");
+}
+
+void OffscreenRenderer::load_classical(const MeshSequence& seq) {
+  Impl& s = *impl_;
+  if (seq.positions.empty() || seq.triangles.empty()) throw InvalidInput(ErrorCode::BadMesh, {}, "empty mesh sequence", "nothing to draw");
+  s.fit_camera(seq.positions);
+  s.frames = seq;
+  s.reset_buffers();
+  const std::size_t nv = seq.positions[0].size();
+  glGenBuffers(1, &s.vbo);
+  glBindBuffer(GL_ARRAY_BUFFER, s.vbo);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(nv * 12), nullptr, GL_STREAM_DRAW);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+  glEnableVertexAttribArray(0);
+  glGenBuffers(1, &s.ebo);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.ebo);
+  s.index_count = seq.triangles.size() * 3;
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.index_count * 4), nullptr, GL_STREAM_DRAW);
+  s.staging.resize(nv * 3);
+}
+
+std::size_t OffscreenRenderer::draw_classical(std::size_t f) {
+  Impl& s = *impl_;
+  const auto& P = s.frames.positions.at(f);
+  for (std::size_t v = 0; v < P.size(); ++v)
+    for (int c = 0; c < 3; ++c) s.staging[3 * v + c] = static_cast<float>(P[v][c] - s.center[c]);
+  glBindVertexArray(s.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, s.vbo);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(s.staging.size() * 4), s.staging.data());
+  // The full mesh of the frame: its triangles too, as a per-frame marching-cubes mesh would need.
+  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(s.index_count * 4), s.frames.triangles.data());
+  s.begin_frame();
+  s.set_common(s.classical_prog);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.index_count), GL_UNSIGNED_INT, nullptr);
+  return s.staging.size() * 4 + s.index_count * 4;
+}
+
+void OffscreenRenderer::load_compact(const CompactModel& model) {
+  Impl& s = *impl_;
+  const MeshSequence seq = compact_decode(model);  // frame 0, triangles, and the bounds of all frames
+  s.fit_camera(seq.positions);
+  s.reset_buffers();
+  s.times = seq.times_ms;
+  const std::size_t nv = model.vertex_count, nf = model.frame_count;
+  s.nc = model.control.size();
+  // Frame 0 as the decoder sees it before corrections (the GPU carries the control motion only).
+  const ControlWeights w = control_weights(seq.positions[0], model.control, static_cast<int>(model.neighbours));
+  std::vector<float> base(nv * 3);
+  {
+    // Decoded frame 0 includes its corrections; use it as the base (frame-0 corrections are exact).
+    for (std::size_t v = 0; v < nv; ++v)
+      for (int c = 0; c < 3; ++c) base[3 * v + c] = static_cast<float>(seq.positions[0][v][c] - s.center[c]);
+  }
+  struct Attr {
+    std::uint32_t ids[8];
+    float w[8];
+  };
+  std::vector<Attr> attrs(nv);
+  const std::size_t k = static_cast<std::size_t>(w.k);
+  for (std::size_t v = 0; v < nv; ++v) {
+    Attr a{};
+    for (std::size_t j = 0; j < std::min<std::size_t>(k, 8); ++j) {
+      a.ids[j] = w.ids[v * k + j];
+      a.w[j] = w.weights[v * k + j];
+    }
+    attrs[v] = a;
+  }
+  // Control displacements of every frame relative to frame 0 (texel f * nc + c).
+  std::vector<float> motion(nf * s.nc * 4, 0.0f);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (std::size_t c = 0; c < s.nc; ++c) {
+      const Vec3 d = seq.positions[f][model.control[c]] - seq.positions[0][model.control[c]];
+      for (int i = 0; i < 3; ++i) motion[(f * s.nc + c) * 4 + i] = static_cast<float>(d[i]);
+    }
+  glGenBuffers(1, &s.vbo);
+  glBindBuffer(GL_ARRAY_BUFFER, s.vbo);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(base.size() * 4), base.data(), GL_STATIC_DRAW);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+  glEnableVertexAttribArray(0);
+  glGenBuffers(1, &s.wbo);
+  glBindBuffer(GL_ARRAY_BUFFER, s.wbo);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(attrs.size() * sizeof(Attr)), attrs.data(), GL_STATIC_DRAW);
+  glVertexAttribIPointer(1, 4, GL_UNSIGNED_INT, sizeof(Attr), reinterpret_cast<void*>(0));
+  glVertexAttribIPointer(2, 4, GL_UNSIGNED_INT, sizeof(Attr), reinterpret_cast<void*>(16));
+  glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(Attr), reinterpret_cast<void*>(32));
+  glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, sizeof(Attr), reinterpret_cast<void*>(48));
+  for (GLuint i = 1; i <= 4; ++i) glEnableVertexAttribArray(i);
+  glGenBuffers(1, &s.ebo);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.ebo);
+  s.index_count = seq.triangles.size() * 3;
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.index_count * 4), seq.triangles.data(), GL_STATIC_DRAW);
+  glGenBuffers(1, &s.tbo);
+  glBindBuffer(GL_TEXTURE_BUFFER, s.tbo);
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(motion.size() * 4), motion.data(), GL_STATIC_DRAW);
+  glGenTextures(1, &s.tex);
+  glBindTexture(GL_TEXTURE_BUFFER, s.tex);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, s.tbo);
+}
+
+std::size_t OffscreenRenderer::draw_compact(double t_ms) {
+  Impl& s = *impl_;
+  const std::size_t n = s.times.size();
+  GLint fr[4] = {0, 0, 0, 0};
+  GLfloat fw[4] = {0, 0, 0, 0};
+  const bool periodic = s.opt.interpolation == TimeInterpolation::CatmullRomPeriodic;
+  const TimeSample ts = locate_time(s.times, t_ms, periodic);
+  if (s.opt.interpolation == TimeInterpolation::Step || ts.u == 0.0) {
+    fr[0] = static_cast<GLint>(ts.i0);
+    fw[0] = 1;
+  } else if (!periodic) {
+    fr[0] = static_cast<GLint>(ts.i0);
+    fr[1] = static_cast<GLint>(ts.i1);
+    fw[0] = static_cast<float>(1 - ts.u);
+    fw[1] = static_cast<float>(ts.u);
+  } else {
+    double w[4];
+    catmull_rom_weights(ts.u, w);
+    fr[0] = static_cast<GLint>((ts.i0 + n - 1) % n);
+    fr[1] = static_cast<GLint>(ts.i0);
+    fr[2] = static_cast<GLint>(ts.i1);
+    fr[3] = static_cast<GLint>((ts.i1 + 1) % n);
+    for (int i = 0; i < 4; ++i) fw[i] = static_cast<float>(w[i]);
+  }
+  glBindVertexArray(s.vao);
+  s.begin_frame();
+  s.set_common(s.compact_prog);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_BUFFER, s.tex);
+  glUniform1i(glGetUniformLocation(s.compact_prog, "motion"), 0);
+  glUniform1i(glGetUniformLocation(s.compact_prog, "nc"), static_cast<GLint>(s.nc));
+  glUniform4iv(glGetUniformLocation(s.compact_prog, "frames"), 1, fr);
+  glUniform4fv(glGetUniformLocation(s.compact_prog, "fw"), 1, fw);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.index_count), GL_UNSIGNED_INT, nullptr);
+  return sizeof fr + sizeof fw;
+}
+
+void OffscreenRenderer::finish() { glFinish(); }
+
+Image OffscreenRenderer::read_image() {
+  Impl& s = *impl_;
+  Image img;
+  img.width = s.opt.width;
+  img.height = s.opt.height;
+  img.rgba.resize(static_cast<std::size_t>(img.width) * img.height * 4);
+  glBindFramebuffer(GL_FRAMEBUFFER, s.fbo);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+  const std::size_t row = static_cast<std::size_t>(img.width) * 4;
+  std::vector<std::uint8_t> tmp(row);
+  for (int y = 0; y < img.height / 2; ++y) {  // GL rows are bottom-up
+    std::uint8_t* a = img.rgba.data() + static_cast<std::size_t>(y) * row;
+    std::uint8_t* b = img.rgba.data() + static_cast<std::size_t>(img.height - 1 - y) * row;
+    std::memcpy(tmp.data(), a, row);
+    std::memcpy(a, b, row);
+    std::memcpy(b, tmp.data(), row);
+  }
+  return img;
+}
+
+}  // namespace c4d

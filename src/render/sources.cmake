@@ -1,0 +1,1 @@
+# Sources of the render stage (paths relative to src/).

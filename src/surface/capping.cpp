@@ -1,0 +1,171 @@
+// Caps: Lim et al. 2014, "Reconstruction from Segmented Contour Lines": the interior of the
+// top-most and bottom-most contours is triangulated to close the surface, and chordal-axis points
+// (Prasad 1997) lifted out of the plane give a rounded tip. Our lift is a circular profile of the
+// distance to the contour, which peaks on the chordal axis. The interior points come from CGAL's
+// 2D Delaunay mesher (Shewchuk's refinement) run once; they are re-triangulated with the loops
+// alone so that loop edges are never split and the cap meets the walls edge to edge.
+#include "contour4d/surface/capping.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <set>
+
+namespace c4d {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
+using Point = K::Point_2;
+
+// Inserts the loops as constraints; vertex info = running loop point index.
+void insert_loops(CDT& cdt, const std::vector<std::vector<Vec2>>& loops) {
+  int index = 0;
+  for (const auto& loop : loops) {
+    std::vector<CDT::Vertex_handle> vh;
+    for (const Vec2& p : loop) {
+      auto v = cdt.insert(Point(p.x, p.y));
+      v->info() = index++;
+      vh.push_back(v);
+    }
+    for (std::size_t k = 0; k < vh.size(); ++k) {
+      const auto a = vh[k], b = vh[(k + 1) % vh.size()];
+      if (a != b) cdt.insert_constraint(a, b);
+    }
+  }
+}
+
+// Marks faces inside the region (odd nesting level counted by crossed constraints).
+void mark_domain(CDT& cdt) {
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->set_in_domain(false);
+  std::deque<std::pair<CDT::Face_handle, int>> border{{cdt.infinite_face(), 0}};
+  std::set<CDT::Face_handle> seen;
+  while (!border.empty()) {
+    auto [start, level] = border.front();
+    border.pop_front();
+    if (seen.count(start)) continue;
+    std::deque<CDT::Face_handle> queue{start};
+    seen.insert(start);
+    while (!queue.empty()) {
+      auto f = queue.front();
+      queue.pop_front();
+      f->set_in_domain(level % 2 == 1);
+      for (int i = 0; i < 3; ++i) {
+        auto n = f->neighbor(i);
+        if (seen.count(n)) continue;
+        if (cdt.is_constrained(CDT::Edge(f, i))) {
+          border.push_back({n, level + 1});
+        } else {
+          seen.insert(n);
+          queue.push_back(n);
+        }
+      }
+    }
+  }
+}
+
+double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double l2 = dot(ab, ab);
+  double t = l2 > 0.0 ? dot(p - a, ab) / l2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return norm(p - (a + t * ab));
+}
+
+double boundary_distance(Vec2 p, const std::vector<std::vector<Vec2>>& loops) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& loop : loops)
+    for (std::size_t k = 0; k < loop.size(); ++k) d = std::min(d, segment_distance(p, loop[k], loop[(k + 1) % loop.size()]));
+  return d;
+}
+
+}  // namespace
+
+CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle style, const CapOptions& options) {
+  CapMesh cap;
+  for (const auto& loop : loops) cap.points.insert(cap.points.end(), loop.begin(), loop.end());
+  const int loop_points = static_cast<int>(cap.points.size());
+  if (style == CapStyle::Open || loop_points < 3) return cap;
+
+  // Pass 1: interior points from the Delaunay mesher.
+  std::vector<Vec2> interior;
+  {
+    CDT cdt;
+    insert_loops(cdt, loops);
+    for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) v->info() = 0;
+    mark_domain(cdt);
+    std::set<CDT::Vertex_handle> original;
+    for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) original.insert(v);
+    if (options.edge > 0) CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125, options.edge), true);
+    for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+      if (original.count(v) || cdt.are_there_incident_constraints(v)) continue;
+      const Vec2 p{v->point().x(), v->point().y()};
+      if (boundary_distance(p, loops) < 0.4 * options.edge) continue;  // would make slivers near the loop
+      interior.push_back(p);
+    }
+    // Keep the order independent of CGAL's vertex storage: sort by position is not rigid-invariant,
+    // but the set is what matters; the final CDT is unique up to cocircular ties.
+    if (interior.empty() && style == CapStyle::Rounded) {
+      // Tiny region: one apex at the centroid of the largest domain face.
+      double best = -1.0;
+      Vec2 apex{};
+      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+        if (!f->is_in_domain()) continue;
+        const Point a = f->vertex(0)->point(), b = f->vertex(1)->point(), c = f->vertex(2)->point();
+        const double area = std::abs(CGAL::area(a, b, c));
+        if (area > best) {
+          best = area;
+          apex = {(a.x() + b.x() + c.x()) / 3.0, (a.y() + b.y() + c.y()) / 3.0};
+        }
+      }
+      if (best > 0.0) interior.push_back(apex);
+    }
+  }
+
+  // Pass 2: loops as constraints plus the interior points.
+  CDT cdt;
+  insert_loops(cdt, loops);
+  for (const Vec2& p : interior) {
+    const auto before = cdt.number_of_vertices();
+    auto v = cdt.insert(Point(p.x, p.y));
+    if (cdt.number_of_vertices() == before) continue;  // landed on an existing point (should not happen)
+    v->info() = static_cast<int>(cap.points.size());
+    cap.points.push_back(p);
+  }
+  mark_domain(cdt);
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    if (!f->is_in_domain()) continue;
+    cap.triangles.push_back({static_cast<std::uint32_t>(f->vertex(0)->info()),
+                             static_cast<std::uint32_t>(f->vertex(1)->info()),
+                             static_cast<std::uint32_t>(f->vertex(2)->info())});
+  }
+  std::sort(cap.triangles.begin(), cap.triangles.end());
+
+  cap.height.assign(cap.points.size(), 0.0);
+  if (style == CapStyle::Rounded && cap.points.size() > static_cast<std::size_t>(loop_points)) {
+    std::vector<double> d(cap.points.size(), 0.0);
+    double dmax = 0.0;
+    for (std::size_t i = static_cast<std::size_t>(loop_points); i < cap.points.size(); ++i)
+      dmax = std::max(dmax, d[i] = boundary_distance(cap.points[i], loops));
+    const double h = std::min(options.height, dmax);
+    for (std::size_t i = static_cast<std::size_t>(loop_points); i < cap.points.size(); ++i) {
+      const double t = dmax > 0 ? std::min(1.0, d[i] / dmax) : 1.0;
+      cap.height[i] = h * std::sqrt(std::max(0.0, 1.0 - (1.0 - t) * (1.0 - t)));
+    }
+  }
+  return cap;
+}
+
+}  // namespace c4d

@@ -1,0 +1,111 @@
+// Topology checks of the reconstructed surface (Lim et al. 2014 ask for "a complete closed
+// manifold"): half-edge pairing, fans around vertices, Euler characteristic, and CGAL's
+// self-intersection test (box intersection then exact triangle tests).
+#include "contour4d/surface/mesh_check.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+
+namespace c4d {
+namespace {
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+struct HalfEdge {
+  std::uint32_t lo, hi;   // sorted endpoints
+  bool forward;           // runs lo -> hi
+  std::size_t tri;
+};
+
+std::size_t corner(std::size_t tri, const Triangle& t, std::uint32_t v) {
+  return 3 * tri + (t[0] == v ? 0 : (t[1] == v ? 1 : 2));
+}
+
+bool soup_self_intersects(const TriangleMesh& mesh) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using SM = CGAL::Surface_mesh<K::Point_3>;
+  SM sm;
+  std::vector<SM::Vertex_index> vid;
+  for (const Vec3& p : mesh.positions) vid.push_back(sm.add_vertex(K::Point_3(p.x, p.y, p.z)));
+  for (const Triangle& t : mesh.triangles)
+    if (sm.add_face(vid[t[0]], vid[t[1]], vid[t[2]]) == SM::null_face()) return true;  // not a manifold surface
+  return CGAL::Polygon_mesh_processing::does_self_intersect(sm);
+}
+
+}  // namespace
+
+MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
+  MeshCheck c;
+  const std::size_t nt = mesh.triangles.size();
+  std::vector<HalfEdge> hes;
+  hes.reserve(3 * nt);
+  std::vector<char> used(mesh.positions.size(), 0);
+  for (std::size_t f = 0; f < nt; ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+        norm(cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]])) == 0.0)
+      ++c.degenerate_triangles;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      used[a] = 1;
+      hes.push_back({std::min(a, b), std::max(a, b), a < b, f});
+    }
+  }
+  std::sort(hes.begin(), hes.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri);
+  });
+  UnionFind faces(nt), corners(3 * nt);
+  std::size_t edges = 0;
+  for (std::size_t i = 0; i < hes.size();) {
+    std::size_t j = i;
+    while (j < hes.size() && hes[j].lo == hes[i].lo && hes[j].hi == hes[i].hi) ++j;
+    ++edges;
+    const std::size_t count = j - i;
+    if (count == 1) ++c.boundary_edges;
+    if (count > 2) ++c.nonmanifold_edges;
+    if (count == 2) {
+      if (hes[i].forward == hes[i + 1].forward) ++c.misoriented_edges;
+      const std::size_t t1 = hes[i].tri, t2 = hes[i + 1].tri;
+      const Triangle &a = mesh.triangles[t1], &b = mesh.triangles[t2];
+      corners.unite(corner(t1, a, hes[i].lo), corner(t2, b, hes[i].lo));
+      corners.unite(corner(t1, a, hes[i].hi), corner(t2, b, hes[i].hi));
+    }
+    for (std::size_t k = i + 1; k < j; ++k) faces.unite(hes[i].tri, hes[k].tri);
+    i = j;
+  }
+  // A vertex is manifold when its corners form one fan.
+  std::vector<std::size_t> first_root(mesh.positions.size(), SIZE_MAX);
+  std::vector<char> bad(mesh.positions.size(), 0);
+  for (std::size_t f = 0; f < nt; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.triangles[f][k];
+      const std::size_t r = corners.find(3 * f + k);
+      if (first_root[v] == SIZE_MAX) first_root[v] = r;
+      else if (first_root[v] != r && !bad[v]) {
+        bad[v] = 1;
+        ++c.nonmanifold_vertices;
+      }
+    }
+  for (std::size_t f = 0; f < nt; ++f)
+    if (faces.find(f) == f) ++c.components;
+  const long nv = static_cast<long>(std::count(used.begin(), used.end(), 1));
+  c.euler = nv - static_cast<long>(edges) + static_cast<long>(nt);
+  c.signed_volume = signed_volume(mesh);
+  if (self_intersections && nt > 0) c.self_intersects = soup_self_intersects(mesh);
+  return c;
+}
+
+}  // namespace c4d

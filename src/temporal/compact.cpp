@@ -1,0 +1,372 @@
+// Compact 4D model: base mesh + motion of few control vertices + bounded sparse corrections.
+//
+// References:
+//  - L. Miara, S. Benomar Elmdeghri, M. O. Cherkaoui Malki, "New Method for 4D Reconstruction of
+//    Medical Images", §III.D–E and Table I: one base mesh, per-frame displacement data, small storage.
+//  - A. Kapoulkine, meshoptimizer: vertex-cache/fetch reordering, index and vertex codecs, and
+//    meshopt_simplify (Garland & Heckbert 1997 quadrics) for the base (control) vertices.
+//  - D. Levin 1998, "The approximation power of moving least-squares": linear-precision MLS weights,
+//    so affine motion (pulsation, small twist) is carried exactly by the control vertices.
+//
+// Why not a per-triangle displacement map: our fine meshes come from contour tiling, not from
+// subdividing a base mesh, so a barycentric grid cannot restore their exact vertices. The fine frame
+// 0 is stored once instead; the motion, which is smooth, is what the few control vertices carry.
+#include "contour4d/temporal/compact.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include <Eigen/Dense>
+#include <meshoptimizer.h>
+#include <tbb/parallel_for.h>
+
+#include "contour4d/core/errors.h"
+
+namespace c4d {
+namespace {
+
+[[noreturn]] void bad(const std::string& what, const std::string& hint, int frame = -1) {
+  Location where;
+  where.frame = frame;
+  throw InvalidInput(ErrorCode::BadMesh, where, what, hint);
+}
+
+void put_varint(std::vector<std::uint8_t>& out, std::uint64_t v) {
+  while (v >= 0x80) {
+    out.push_back(static_cast<std::uint8_t>(v | 0x80));
+    v >>= 7;
+  }
+  out.push_back(static_cast<std::uint8_t>(v));
+}
+
+std::uint64_t get_varint(const std::vector<std::uint8_t>& in, std::size_t& pos) {
+  std::uint64_t v = 0;
+  for (int shift = 0; shift < 64; shift += 7) {
+    if (pos >= in.size()) bad("truncated correction stream", "the file is damaged: pack it again");
+    const std::uint8_t b = in[pos++];
+    v |= static_cast<std::uint64_t>(b & 0x7f) << shift;
+    if ((b & 0x80) == 0) return v;
+  }
+  bad("overlong varint in correction stream", "the file is damaged: pack it again");
+}
+
+std::uint64_t zigzag(std::int64_t v) { return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63); }
+std::int64_t unzigzag(std::uint64_t v) { return static_cast<std::int64_t>(v >> 1) ^ -static_cast<std::int64_t>(v & 1); }
+
+void validate(const MeshSequence& seq) {
+  if (seq.positions.empty()) bad("the mesh sequence has no frames", "reconstruct a 4D mesh first");
+  const std::size_t n = seq.positions[0].size();
+  if (n == 0 || seq.triangles.empty()) bad("the mesh sequence is empty", "reconstruct a 4D mesh first");
+  if (n > std::numeric_limits<std::uint32_t>::max() / 2) bad("too many vertices", "split the mesh");
+  for (std::size_t f = 0; f < seq.positions.size(); ++f) {
+    if (seq.positions[f].size() != n)
+      bad("frame has " + std::to_string(seq.positions[f].size()) + " vertices, frame 0 has " + std::to_string(n),
+          "all frames of a 4D mesh must share vertices and triangles", static_cast<int>(f));
+    for (const Vec3& p : seq.positions[f])
+      if (!is_finite(p)) bad("non-finite vertex coordinate", "check the reconstruction", static_cast<int>(f));
+  }
+  for (const Triangle& t : seq.triangles)
+    for (std::uint32_t i : t)
+      if (i >= n) bad("triangle index " + std::to_string(i) + " out of range", "the triangle list is corrupt");
+  if (!seq.times_ms.empty() && seq.times_ms.size() != seq.positions.size())
+    bad("times_ms has " + std::to_string(seq.times_ms.size()) + " entries for " +
+            std::to_string(seq.positions.size()) + " frames",
+        "give one time per frame");
+}
+
+// Deterministic prediction of every vertex of one frame from the control displacements.
+void predict(const std::vector<Vec3>& base, const ControlWeights& w, const std::vector<Vec3>& control_disp,
+             std::vector<Vec3>& out) {
+  out.resize(base.size());
+  const std::size_t k = static_cast<std::size_t>(w.k);
+  for (std::size_t v = 0; v < base.size(); ++v) {
+    Vec3 d{};
+    for (std::size_t j = 0; j < k; ++j) d += static_cast<double>(w.weights[v * k + j]) * control_disp[w.ids[v * k + j]];
+    out[v] = base[v] + d;
+  }
+}
+
+std::vector<Vec3> decode_positions(const CompactModel& m) {
+  std::vector<std::uint16_t> q(static_cast<std::size_t>(m.vertex_count) * 4);
+  if (meshopt_decodeVertexBuffer(q.data(), m.vertex_count, 8, m.positions.data(), m.positions.size()) != 0)
+    bad("corrupt position stream", "the file is damaged: pack it again");
+  std::vector<Vec3> p(m.vertex_count);
+  for (std::size_t v = 0; v < p.size(); ++v)
+    p[v] = {m.origin[0] + q[4 * v] * m.grid_step, m.origin[1] + q[4 * v + 1] * m.grid_step,
+            m.origin[2] + q[4 * v + 2] * m.grid_step};
+  return p;
+}
+
+std::vector<Vec3> decode_motion(const CompactModel& m, std::size_t frame) {
+  // Decoded whole once per call; callers cache (decode is done once per model in compact_decode).
+  const std::size_t nc = m.control.size();
+  std::vector<std::int16_t> q(nc * m.frame_count * 4);
+  if (nc > 0 && meshopt_decodeVertexBuffer(q.data(), nc * m.frame_count, 8, m.motion.data(), m.motion.size()) != 0)
+    bad("corrupt motion stream", "the file is damaged: pack it again");
+  std::vector<Vec3> d(nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::size_t r = (c * m.frame_count + frame) * 4;
+    d[c] = {q[r] * m.motion_step, q[r + 1] * m.motion_step, q[r + 2] * m.motion_step};
+  }
+  return d;
+}
+
+}  // namespace
+
+ControlWeights control_weights(const std::vector<Vec3>& positions, const std::vector<std::uint32_t>& control,
+                               int neighbours) {
+  ControlWeights w;
+  const std::size_t nc = control.size();
+  w.k = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::clamp(neighbours, 1, kMaxCompactNeighbours)), nc));
+  const std::size_t k = static_cast<std::size_t>(w.k);
+  w.ids.assign(positions.size() * k, 0);
+  w.weights.assign(positions.size() * k, 0.0f);
+  if (k == 0) return w;
+  std::vector<Vec3> cp(nc);
+  for (std::size_t c = 0; c < nc; ++c) cp[c] = positions[control[c]];
+  tbb::parallel_for(std::size_t{0}, positions.size(), std::size_t{256}, [&](std::size_t v0) {
+    const std::size_t v1 = std::min(positions.size(), v0 + 256);
+    std::vector<std::pair<double, std::uint32_t>> best;
+    for (std::size_t v = v0; v < v1; ++v) {
+      const Vec3 x = positions[v];
+      best.clear();
+      // k nearest control vertices, ties broken by id (deterministic).
+      for (std::size_t c = 0; c < nc; ++c) {
+        const Vec3 e = cp[c] - x;
+        const std::pair<double, std::uint32_t> cand{dot(e, e), static_cast<std::uint32_t>(c)};
+        if (best.size() < k) {
+          best.push_back(cand);
+          std::push_heap(best.begin(), best.end());
+        } else if (cand < best.front()) {
+          std::pop_heap(best.begin(), best.end());
+          best.back() = cand;
+          std::push_heap(best.begin(), best.end());
+        }
+      }
+      std::sort(best.begin(), best.end());
+      if (best.front().first == 0.0) {  // x is a control vertex: carry it exactly
+        w.ids[v * k] = best.front().second;
+        w.weights[v * k] = 1.0f;
+        for (std::size_t j = 1; j < k; ++j) w.ids[v * k + j] = best[j].second;
+        continue;
+      }
+      const double h2 = 0.25 * best.back().first + 1e-12;
+      Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
+      std::array<Eigen::Vector4d, kMaxCompactNeighbours> b;
+      std::array<double, kMaxCompactNeighbours> wt{};
+      for (std::size_t j = 0; j < k; ++j) {
+        const Vec3 e = cp[best[j].second] - x;
+        b[j] = Eigen::Vector4d(1.0, e.x, e.y, e.z);
+        wt[j] = 1.0 / (best[j].first + h2);
+        M += wt[j] * b[j] * b[j].transpose();
+      }
+      // A small ridge on the gradient: control vertices near a surface are almost coplanar.
+      const double ridge = 1e-3 * (M(1, 1) + M(2, 2) + M(3, 3)) / 3.0 + 1e-300;
+      for (int i = 1; i < 4; ++i) M(i, i) += ridge;
+      const Eigen::Vector4d a = M.ldlt().solve(Eigen::Vector4d::UnitX());
+      for (std::size_t j = 0; j < k; ++j) {
+        w.ids[v * k + j] = best[j].second;
+        w.weights[v * k + j] = static_cast<float>(wt[j] * a.dot(b[j]));
+      }
+    }
+  }, tbb::simple_partitioner());
+  return w;
+}
+
+CompactModel compact_encode(const MeshSequence& seq_in, const CompactOptions& opt,
+                            std::vector<std::uint32_t>* vertex_order, CompactStats* stats) {
+  validate(seq_in);
+  if (!(opt.tolerance > 0.0)) bad("tolerance must be positive", "use e.g. 0.05 mm");
+  const std::size_t nv = seq_in.positions[0].size();
+  const std::size_t nf = seq_in.positions.size();
+  std::vector<std::uint32_t> idx(seq_in.triangles.size() * 3);
+  for (std::size_t t = 0; t < seq_in.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) idx[3 * t + c] = seq_in.triangles[t][c];
+
+  // Reorder for locality: the codecs compress deltas between neighbours.
+  std::vector<std::uint32_t> order(nv);  // order[new] = old
+  std::iota(order.begin(), order.end(), 0u);
+  if (opt.reorder) {
+    std::vector<std::uint32_t> tmp(idx.size());
+    meshopt_optimizeVertexCache(tmp.data(), idx.data(), idx.size(), nv);
+    std::vector<std::uint32_t> remap(nv);
+    const std::size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), tmp.data(), tmp.size(), nv);
+    std::uint32_t next = static_cast<std::uint32_t>(used);
+    for (std::size_t v = 0; v < nv; ++v)
+      if (remap[v] == ~0u) remap[v] = next++;  // unreferenced vertices go last
+    for (std::size_t v = 0; v < nv; ++v) order[remap[v]] = static_cast<std::uint32_t>(v);
+    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = remap[tmp[i]];
+  }
+  std::vector<std::vector<Vec3>> P(nf, std::vector<Vec3>(nv));
+  for (std::size_t f = 0; f < nf; ++f)
+    for (std::size_t v = 0; v < nv; ++v) P[f][v] = seq_in.positions[f][order[v]];
+
+  CompactModel m;
+  m.vertex_count = static_cast<std::uint32_t>(nv);
+  m.triangle_count = static_cast<std::uint32_t>(seq_in.triangles.size());
+  m.frame_count = static_cast<std::uint32_t>(nf);
+  m.times_ms = seq_in.times_ms;
+  if (m.times_ms.empty())
+    for (std::size_t f = 0; f < nf; ++f) m.times_ms.push_back(static_cast<double>(f));
+  m.tolerance = opt.tolerance;
+  m.neighbours = static_cast<std::uint32_t>(std::clamp(opt.neighbours, 1, kMaxCompactNeighbours));
+
+  m.indices.resize(meshopt_encodeIndexBufferBound(idx.size(), nv));
+  m.indices.resize(meshopt_encodeIndexBuffer(m.indices.data(), m.indices.size(), idx.data(), idx.size()));
+
+  // Frame 0 on a grid: per-coordinate error <= step/2, Euclidean <= tolerance/2.
+  Vec3 lo = P[0][0], hi = P[0][0];
+  for (const Vec3& p : P[0])
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], p[c]);
+      hi[c] = std::max(hi[c], p[c]);
+    }
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  m.grid_step = std::max(opt.tolerance / std::sqrt(3.0), extent / 65535.0);
+  for (int c = 0; c < 3; ++c) m.origin[c] = lo[c];
+  std::vector<std::uint16_t> q0(nv * 4, 0);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int c = 0; c < 3; ++c)
+      q0[4 * v + c] = static_cast<std::uint16_t>(std::clamp(std::lround((P[0][v][c] - lo[c]) / m.grid_step), 0L, 65535L));
+  m.positions.resize(meshopt_encodeVertexBufferBound(nv, 8));
+  m.positions.resize(meshopt_encodeVertexBuffer(m.positions.data(), m.positions.size(), q0.data(), nv, 8));
+  const std::vector<Vec3> base = decode_positions(m);
+
+  // Control vertices: those meshopt_simplify keeps of the (reordered) frame-0 mesh.
+  if (nv <= opt.control_vertices + 3) {
+    m.control.resize(nv);
+    std::iota(m.control.begin(), m.control.end(), 0u);
+  } else {
+    std::vector<float> fp(nv * 3);
+    for (std::size_t v = 0; v < nv; ++v)
+      for (int c = 0; c < 3; ++c) fp[3 * v + c] = static_cast<float>(P[0][v][c]);
+    std::vector<std::uint32_t> simple(idx.size());
+    const std::size_t target = std::max<std::size_t>(12, opt.control_vertices * 6);
+    simple.resize(meshopt_simplify(simple.data(), idx.data(), idx.size(), fp.data(), nv, 12, target, 1.0f, 0, nullptr));
+    std::vector<char> keep(nv, 0);
+    for (std::uint32_t i : simple) keep[i] = 1;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (keep[v]) m.control.push_back(static_cast<std::uint32_t>(v));
+    if (m.control.size() < 4) {  // degenerate simplification: fall back to every vertex
+      m.control.resize(nv);
+      std::iota(m.control.begin(), m.control.end(), 0u);
+    }
+  }
+  const std::size_t nc = m.control.size();
+
+  // Control displacements relative to the decoded frame 0, int16 per coordinate.
+  double maxd = 0.0;
+  for (std::size_t f = 0; f < nf; ++f)
+    for (std::uint32_t c : m.control)
+      for (int i = 0; i < 3; ++i) maxd = std::max(maxd, std::abs(P[f][c][i] - base[c][i]));
+  m.motion_step = std::max(opt.tolerance / 4.0, maxd / 32000.0);
+  std::vector<std::int16_t> qm(nc * nf * 4, 0);
+  for (std::size_t c = 0; c < nc; ++c)
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int i = 0; i < 3; ++i)
+        qm[(c * nf + f) * 4 + i] = static_cast<std::int16_t>(std::lround((P[f][m.control[c]][i] - base[m.control[c]][i]) / m.motion_step));
+  m.motion.resize(meshopt_encodeVertexBufferBound(nc * nf, 8));
+  m.motion.resize(meshopt_encodeVertexBuffer(m.motion.data(), m.motion.size(), qm.data(), nc * nf, 8));
+
+  // Corrections where the interpolated motion misses the input by more than the tolerance (with a
+  // margin for floating-point differences between machines).
+  m.residual_step = 2.0 * opt.tolerance / std::sqrt(3.0) * 0.98;
+  const ControlWeights w = control_weights(base, m.control, static_cast<int>(m.neighbours));
+  CompactStats st;
+  double sum2 = 0.0;
+  std::vector<Vec3> pred;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::vector<Vec3> disp = decode_motion(m, f);
+    predict(base, w, disp, pred);
+    std::vector<std::uint8_t> corr;
+    std::vector<std::uint8_t> body;
+    std::uint64_t count = 0;
+    std::size_t last = 0;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (distance(pred[v], P[f][v]) <= 0.9 * opt.tolerance) continue;
+      std::array<std::int64_t, 3> r{};
+      for (int i = 0; i < 3; ++i) r[i] = std::llround((P[f][v][i] - pred[v][i]) / m.residual_step);
+      put_varint(body, v - last);
+      last = v;
+      for (int i = 0; i < 3; ++i) {
+        put_varint(body, zigzag(r[i]));
+        pred[v][i] += static_cast<double>(r[i]) * m.residual_step;
+      }
+      ++count;
+    }
+    put_varint(corr, count);
+    corr.insert(corr.end(), body.begin(), body.end());
+    m.corrections.push_back(std::move(corr));
+    st.corrected_vertices += count;
+    for (std::size_t v = 0; v < nv; ++v) {
+      const double e = distance(pred[v], P[f][v]);
+      st.max_error = std::max(st.max_error, e);
+      sum2 += e * e;
+    }
+  }
+  st.rms_error = std::sqrt(sum2 / static_cast<double>(nv * nf));
+  st.index_bytes = m.indices.size();
+  st.position_bytes = m.positions.size();
+  st.motion_bytes = m.motion.size() + 4 * nc;
+  for (const auto& c : m.corrections) st.correction_bytes += c.size();
+  if (stats) *stats = st;
+  if (vertex_order) *vertex_order = order;
+  return m;
+}
+
+MeshSequence compact_decode(const CompactModel& m) {
+  if (m.vertex_count == 0 || m.triangle_count == 0 || m.frame_count == 0)
+    bad("empty compact model", "pack a non-empty 4D mesh");
+  if (m.times_ms.size() != m.frame_count || m.corrections.size() != m.frame_count)
+    bad("frame count does not match the time and correction lists", "the file is damaged: pack it again");
+  if (!(m.grid_step > 0.0) || !(m.motion_step > 0.0) || !(m.residual_step > 0.0) || m.neighbours == 0 ||
+      m.neighbours > static_cast<std::uint32_t>(kMaxCompactNeighbours))
+    bad("invalid quantisation parameters", "the file is damaged: pack it again");
+  for (std::size_t c = 0; c < m.control.size(); ++c)
+    if (m.control[c] >= m.vertex_count || (c > 0 && m.control[c] <= m.control[c - 1]))
+      bad("invalid control vertex list", "the file is damaged: pack it again");
+  MeshSequence seq;
+  std::vector<std::uint32_t> idx(static_cast<std::size_t>(m.triangle_count) * 3);
+  if (meshopt_decodeIndexBuffer(idx.data(), idx.size(), 4, m.indices.data(), m.indices.size()) != 0)
+    bad("corrupt index stream", "the file is damaged: pack it again");
+  seq.triangles.resize(m.triangle_count);
+  for (std::size_t t = 0; t < seq.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      if (idx[3 * t + c] >= m.vertex_count) bad("triangle index out of range", "the file is damaged: pack it again");
+      seq.triangles[t][c] = idx[3 * t + c];
+    }
+  const std::vector<Vec3> base = decode_positions(m);
+  const ControlWeights w = control_weights(base, m.control, static_cast<int>(m.neighbours));
+  const std::size_t nc = m.control.size();
+  std::vector<std::int16_t> q(nc * m.frame_count * 4);
+  if (nc > 0 && meshopt_decodeVertexBuffer(q.data(), nc * m.frame_count, 8, m.motion.data(), m.motion.size()) != 0)
+    bad("corrupt motion stream", "the file is damaged: pack it again");
+  seq.times_ms = m.times_ms;
+  seq.positions.resize(m.frame_count);
+  std::vector<Vec3> disp(nc);
+  for (std::size_t f = 0; f < m.frame_count; ++f) {
+    for (std::size_t c = 0; c < nc; ++c) {
+      const std::size_t r = (c * m.frame_count + f) * 4;
+      disp[c] = {q[r] * m.motion_step, q[r + 1] * m.motion_step, q[r + 2] * m.motion_step};
+    }
+    predict(base, w, disp, seq.positions[f]);
+    const std::vector<std::uint8_t>& corr = m.corrections[f];
+    std::size_t pos = 0;
+    const std::uint64_t count = get_varint(corr, pos);
+    if (count > m.vertex_count) bad("too many corrections", "the file is damaged: pack it again", static_cast<int>(f));
+    std::uint64_t v = 0;
+    for (std::uint64_t i = 0; i < count; ++i) {
+      v += get_varint(corr, pos);
+      if (v >= m.vertex_count) bad("correction vertex out of range", "the file is damaged: pack it again", static_cast<int>(f));
+      for (int c = 0; c < 3; ++c)
+        seq.positions[f][v][c] += static_cast<double>(unzigzag(get_varint(corr, pos))) * m.residual_step;
+    }
+  }
+  return seq;
+}
+
+}  // namespace c4d

@@ -1,0 +1,5 @@
+# Sources of the temporal stage (paths relative to src/).
+target_sources(contour4d PRIVATE
+  temporal/compact.cpp
+  temporal/interpolate.cpp
+  temporal/sequence.cpp)

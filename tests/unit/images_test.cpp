@@ -1,0 +1,413 @@
+// Label images: ITK round trips (NIfTI, NRRD, MetaImage; 3D, 4D, one file per frame) and contour
+// extraction checked against the exact sections of analytic shapes on an oblique grid.
+#include "contour4d/io/images.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <unistd.h>
+
+#include "contour4d/core/errors.h"
+#include "contour4d/extract/mask_contours.h"
+
+namespace c4d {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("c4d_images_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Rotation of 30° about (1, 2, 3)/√14: an oblique direction matrix (columns = voxel axes).
+std::array<double, 9> oblique() {
+  const double th = std::numbers::pi / 6, c = std::cos(th), s = std::sin(th), t = 1 - c;
+  const double n = std::sqrt(14.0), x = 1 / n, y = 2 / n, z = 3 / n;
+  return {t * x * x + c,     t * x * y - s * z, t * x * z + s * y,  //
+          t * x * y + s * z, t * y * y + c,     t * y * z - s * x,  //
+          t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+}
+
+// A shape in its local frame (mm, centred on the grid): inside(p) and the distance from a point of
+// the slice plane z to the exact section curve.
+struct Shape {
+  std::function<bool(Vec3)> inside;
+  std::function<double(double x, double y, double z)> section_distance;
+};
+
+Shape ellipsoid(double a, double b, double c) {
+  Shape s;
+  s.inside = [=](Vec3 p) { return p.x * p.x / (a * a) + p.y * p.y / (b * b) + p.z * p.z / (c * c) < 1; };
+  s.section_distance = [=](double x, double y, double z) {
+    const double k = std::sqrt(std::max(0.0, 1 - z * z / (c * c)));
+    const double ea = a * k, eb = b * k;
+    // Dense sampling of the section ellipse, refined around the best sample.
+    double best = 1e300, bt = 0;
+    const int n = 4000;
+    for (int i = 0; i < n; ++i) {
+      const double t = 2 * std::numbers::pi * i / n;
+      const double d = std::hypot(ea * std::cos(t) - x, eb * std::sin(t) - y);
+      if (d < best) best = d, bt = t;
+    }
+    for (double h = 2 * std::numbers::pi / n; h > 1e-9; h *= 0.5)
+      for (double t : {bt - h, bt + h}) {
+        const double d = std::hypot(ea * std::cos(t) - x, eb * std::sin(t) - y);
+        if (d < best) best = d, bt = t;
+      }
+    return best;
+  };
+  return s;
+}
+
+Shape torus(double R, double r) {
+  Shape s;
+  s.inside = [=](Vec3 p) {
+    const double q = std::hypot(p.x, p.y) - R;
+    return q * q + p.z * p.z < r * r;
+  };
+  s.section_distance = [=](double x, double y, double z) {
+    const double w = std::sqrt(std::max(0.0, r * r - z * z));
+    const double rho = std::hypot(x, y);
+    return std::min(std::abs(rho - (R - w)), std::abs(rho - (R + w)));
+  };
+  return s;
+}
+
+struct Grid {
+  LabelVolume vol;
+  Vec3 centre;  // local origin in voxel-scaled coordinates (i·Δ0, j·Δ1, k·Δ2)
+};
+
+Grid rasterise(const Shape& shape, std::array<int, 3> dims, std::array<double, 3> spacing, int label = 1) {
+  Grid g;
+  g.vol.dims = dims;
+  g.vol.spacing = spacing;
+  g.vol.origin = {12, -7, 33};
+  g.vol.direction = oblique();
+  // Centre between voxels in-plane (no symmetry luck), and mid-way between two slices.
+  g.centre = {(dims[0] - 1) * spacing[0] / 2 + 0.37, (dims[1] - 1) * spacing[1] / 2 - 0.21, (dims[2] - 1) * spacing[2] / 2};
+  g.vol.labels.assign(static_cast<std::size_t>(dims[0] * dims[1] * dims[2]), 0);
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i) {
+        const Vec3 p = Vec3{i * spacing[0], j * spacing[1], k * spacing[2]} - g.centre;
+        if (shape.inside(p)) g.vol.labels[static_cast<std::size_t>(i + dims[0] * (j + dims[1] * k))] = label;
+      }
+  return g;
+}
+
+// World -> local shape frame: local = Dᵀ (p − origin) − centre.
+Vec3 to_local(const Grid& g, Vec3 p) {
+  const auto& D = g.vol.direction;
+  const Vec3 d = p - Vec3{g.vol.origin[0], g.vol.origin[1], g.vol.origin[2]};
+  return Vec3{D[0] * d.x + D[3] * d.y + D[6] * d.z, D[1] * d.x + D[4] * d.y + D[7] * d.z,
+              D[2] * d.x + D[5] * d.y + D[8] * d.z} -
+         g.centre;
+}
+
+double max_section_error(const Sequence& seq, const Grid& g, const Shape& s, std::size_t* points = nullptr,
+                         double* rms = nullptr) {
+  double worst = 0, sum2 = 0;
+  std::size_t n = 0;
+  for (const Frame& f : seq.frames)
+    for (const Slice& sl : f.slices)
+      for (const Contour& c : sl.contours)
+        for (const Vec3& p : c.points) {
+          const Vec3 q = to_local(g, p);
+          const double e = s.section_distance(q.x, q.y, q.z);
+          worst = std::max(worst, e);
+          sum2 += e * e;
+          ++n;
+        }
+  if (points) *points = n;
+  if (rms) *rms = n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
+  return worst;
+}
+
+void expect_same_geometry(const LabelVolume& a, const LabelVolume& b) {
+  EXPECT_EQ(a.dims, b.dims);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(a.spacing[static_cast<std::size_t>(i)], b.spacing[static_cast<std::size_t>(i)], 1e-5);
+    EXPECT_NEAR(a.origin[static_cast<std::size_t>(i)], b.origin[static_cast<std::size_t>(i)], 1e-4);
+  }
+  for (int i = 0; i < 9; ++i) EXPECT_NEAR(a.direction[static_cast<std::size_t>(i)], b.direction[static_cast<std::size_t>(i)], 1e-5);
+  EXPECT_EQ(a.labels, b.labels);
+}
+
+template <typename F>
+ErrorCode code_of_at(int line, F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    EXPECT_FALSE(std::string(e.what()).empty());
+    return e.code();
+  }
+  ADD_FAILURE() << "no error thrown (test line " << line << ")";
+  return ErrorCode::Internal;
+}
+#define code_of(f) code_of_at(__LINE__, f)
+
+TEST(LabelImages, RoundTripAnalyticShapesOnAnObliqueGridWithinHalfAPixel) {
+  const fs::path dir = temp_dir("roundtrip");
+  struct Case {
+    const char* name;
+    Shape shape;
+    std::array<int, 3> dims;
+    std::array<double, 3> spacing;
+    std::size_t contours_per_slice;  // 0: any
+  };
+  const Case cases[] = {
+      {"ellipsoid", ellipsoid(25, 18, 30), {64, 52, 10}, {1.0, 0.9, 6.0}, 1},
+      {"torus", torus(20, 8), {60, 64, 4}, {1.1, 0.95, 5.0}, 2},
+  };
+  for (const Case& c : cases)
+    for (const char* ext : {".nii.gz", ".nrrd", ".nii", ".mha"}) {
+      SCOPED_TRACE(std::string(c.name) + ext);
+      const Grid g = rasterise(c.shape, c.dims, c.spacing);
+      const fs::path file = dir / (std::string(c.name) + ext);
+      write_label_volume(file, {g.vol});
+      const LabelSeries series = read_label_series(file);
+      ASSERT_EQ(series.frames.size(), 1u);
+      expect_same_geometry(g.vol, series.frames[0]);
+      const Sequence seq = extract_mask_contours(series);
+      ASSERT_EQ(seq.frames.size(), 1u);
+      EXPECT_EQ(seq.space, "LPS");
+      // Slice normal is the third direction column (slice axis: largest spacing).
+      const Vec3 n{g.vol.direction[2], g.vol.direction[5], g.vol.direction[8]};
+      EXPECT_NEAR(std::abs(dot(seq.normal, n)), 1.0, 1e-9);
+      for (const Slice& s : seq.frames[0].slices) {
+        if (c.contours_per_slice) {
+          EXPECT_EQ(s.contours.size(), c.contours_per_slice) << "slice " << s.id;
+        }
+        for (const Contour& ct : s.contours) EXPECT_EQ(ct.label, "1");
+      }
+      std::size_t points = 0;
+      double rms = 0;
+      const double err = max_section_error(seq, g, c.shape, &points, &rms);
+      // Half a pixel: of the larger in-plane spacing (a point-sampled mask cannot place an edge
+      // better than ±½ pixel across it at the extreme rows of a section); on average far better.
+      const double px_min = std::min(c.spacing[0], c.spacing[1]), px_max = std::max(c.spacing[0], c.spacing[1]);
+      EXPECT_LT(err, 0.5 * px_max) << points << " points";
+      EXPECT_LT(rms, 0.2 * px_min);
+      std::printf("[ figure ] %s%s: distance to the exact section max %.3f mm (%.2f px), rms %.3f mm (%.2f px), %zu points\n",
+                  c.name, ext, err, err / px_min, rms, rms / px_min, points);
+      if (std::string(ext) == ".nii.gz") {
+        MaskExtractOptions raw, gauss, gauss7, t30;
+        raw.taubin_passes = 0;
+        raw.resample_mm = 0;
+        gauss.presmooth_sigma_px = 1.0;
+        gauss7.presmooth_sigma_px = 0.7;
+        t30.taubin_passes = 30;
+        for (auto [name, o] : {std::pair{"raw staircase", raw}, {"gauss 1.0 + taubin", gauss}, {"gauss 0.7 + taubin", gauss7}, {"taubin 30", t30}}) {
+          double r = 0;
+          const double e = max_section_error(extract_mask_contours(series, o), g, c.shape, nullptr, &r);
+          std::printf("[ figure ] %s, %s: max %.3f mm, rms %.3f mm\n", c.name, name, e, r);
+        }
+      }
+    }
+  fs::remove_all(dir);
+}
+
+TEST(LabelImages, RasSpaceNegatesXAndY) {
+  const Grid g = rasterise(ellipsoid(10, 8, 12), {30, 30, 5}, {1, 1, 5});
+  LabelSeries s;
+  s.frames = {g.vol};
+  s.source = "memory";
+  const Sequence lps = extract_mask_contours(s);
+  MaskExtractOptions o;
+  o.space = "RAS";
+  const Sequence ras = extract_mask_contours(s, o);
+  EXPECT_EQ(ras.space, "RAS");
+  const Vec3 p = lps.frames[0].slices[0].contours[0].points[0];
+  const Vec3 q = ras.frames[0].slices[0].contours[0].points[0];
+  EXPECT_DOUBLE_EQ(p.x, -q.x);
+  EXPECT_DOUBLE_EQ(p.y, -q.y);
+  EXPECT_DOUBLE_EQ(p.z, q.z);
+}
+
+TEST(LabelImages, FourDFileAndOneFilePerFrameGiveTheSameFrames) {
+  const fs::path dir = temp_dir("frames");
+  Grid a = rasterise(ellipsoid(12, 10, 14), {32, 32, 6}, {1, 1, 6}, 3);
+  Grid b = rasterise(ellipsoid(10, 9, 12), {32, 32, 6}, {1, 1, 6}, 3);
+  write_label_volume(dir / "cine.nii.gz", {a.vol, b.vol});
+  const LabelSeries four = read_label_series(dir / "cine.nii.gz");
+  ASSERT_EQ(four.frames.size(), 2u);
+  expect_same_geometry(a.vol, four.frames[0]);
+  expect_same_geometry(b.vol, four.frames[1]);
+
+  // ACDC layout: ground truth beside images; frame 2 before frame 10 (natural order).
+  fs::create_directories(dir / "patient");
+  write_label_volume(dir / "patient" / "p_frame10_gt.nii.gz", {b.vol});
+  write_label_volume(dir / "patient" / "p_frame2_gt.nii.gz", {a.vol});
+  write_label_volume(dir / "patient" / "p_frame2.nii.gz", {a.vol}, {ImagePixel::Float32, 0.25});
+  const LabelSeries folder = read_label_series(dir / "patient");
+  ASSERT_EQ(folder.frames.size(), 2u);
+  EXPECT_EQ(folder.frames[0].labels, a.vol.labels);
+  EXPECT_EQ(folder.frames[1].labels, b.vol.labels);
+  const LabelSeries glob = read_label_series(dir / "patient" / "p_frame*_gt.nii.gz");
+  ASSERT_EQ(glob.frames.size(), 2u);
+  EXPECT_EQ(glob.frames[1].labels, b.vol.labels);
+  EXPECT_TRUE(is_label_image_input(dir / "patient"));
+  EXPECT_TRUE(is_label_image_input(dir / "patient" / "p_frame*_gt.nii.gz"));
+  EXPECT_FALSE(is_label_image_input(dir / "nothing.json"));
+
+  MaskExtractOptions o;
+  o.preset = "acdc";
+  o.labels = {"lv"};
+  const Sequence seq = extract_mask_contours(four, o);
+  ASSERT_EQ(seq.frames.size(), 2u);
+  for (const Frame& f : seq.frames)
+    for (const Slice& s : f.slices)
+      for (const Contour& c : s.contours) EXPECT_EQ(c.label, "lv");
+  fs::remove_all(dir);
+}
+
+TEST(LabelImages, FloatImageOfWholeNumbersIsAccepted) {
+  const fs::path dir = temp_dir("float");
+  const Grid g = rasterise(ellipsoid(10, 8, 12), {30, 30, 5}, {1, 1, 5}, 2);
+  write_label_volume(dir / "f.nrrd", {g.vol}, {ImagePixel::Float32, 1.0});
+  EXPECT_EQ(read_label_series(dir / "f.nrrd").frames[0].labels, g.vol.labels);
+  fs::remove_all(dir);
+}
+
+TEST(LabelImages, SliceAxisAutoAndExplicit) {
+  const Grid g = rasterise(ellipsoid(10, 12, 14), {6, 30, 30}, {5, 1, 1});
+  LabelSeries s;
+  s.frames = {g.vol};
+  const Sequence seq = extract_mask_contours(s);
+  const Vec3 n0{g.vol.direction[0], g.vol.direction[3], g.vol.direction[6]};
+  EXPECT_NEAR(std::abs(dot(seq.normal, n0)), 1.0, 1e-9);
+  MaskExtractOptions o;
+  o.slice_axis = 2;
+  const Sequence seq2 = extract_mask_contours(s, o);
+  const Vec3 n2{g.vol.direction[2], g.vol.direction[5], g.vol.direction[8]};
+  EXPECT_NEAR(std::abs(dot(seq2.normal, n2)), 1.0, 1e-9);
+  for (const Slice& sl : seq2.frames[0].slices) EXPECT_TRUE(sl.id >= 0 && sl.id < 30);
+}
+
+TEST(LabelImages, DeterministicWhateverTheThreadCount) {
+  const Grid g = rasterise(torus(12, 5), {40, 40, 8}, {1, 1, 2});
+  LabelSeries s;
+  s.frames = {g.vol, g.vol, g.vol};
+  Sequence one, many;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    one = extract_mask_contours(s);
+  }
+  many = extract_mask_contours(s);
+  ASSERT_EQ(one.frames.size(), many.frames.size());
+  for (std::size_t f = 0; f < one.frames.size(); ++f) {
+    ASSERT_EQ(one.frames[f].slices.size(), many.frames[f].slices.size());
+    for (std::size_t i = 0; i < one.frames[f].slices.size(); ++i) {
+      const auto& a = one.frames[f].slices[i].contours;
+      const auto& b = many.frames[f].slices[i].contours;
+      ASSERT_EQ(a.size(), b.size());
+      for (std::size_t c = 0; c < a.size(); ++c) {
+        ASSERT_EQ(a[c].points.size(), b[c].points.size());
+        for (std::size_t p = 0; p < a[c].points.size(); ++p) EXPECT_TRUE(a[c].points[p] == b[c].points[p]);
+      }
+    }
+  }
+}
+
+TEST(LabelImages, CorpusFilesAgreeAcrossFormats) {
+  const fs::path dir = fs::path(C4D_CORPUS_DIR) / "images";
+  const std::vector<LabelVolume> ref = read_label_image(dir / "tiny.nii.gz");
+  ASSERT_EQ(ref.size(), 1u);
+  EXPECT_EQ(ref[0].dims, (std::array<int, 3>{8, 8, 3}));
+  EXPECT_NEAR(ref[0].spacing[2], 6.0, 1e-9);
+  // nibabel wrote RAS (-10, 5, 20); ITK gives LPS.
+  EXPECT_NEAR(ref[0].origin[0], 10.0, 1e-6);
+  EXPECT_NEAR(ref[0].origin[1], -5.0, 1e-6);
+  EXPECT_EQ(ref[0].labels[2 + 8 * (2 + 8 * 0)], 1);
+  EXPECT_EQ(ref[0].labels[3 + 8 * (3 + 8 * 1)], 2);
+  for (const char* f : {"tiny.nii", "tiny.nrrd", "tiny.mha"}) {
+    const std::vector<LabelVolume> v = read_label_image(dir / f);
+    ASSERT_EQ(v.size(), 1u) << f;
+    EXPECT_EQ(v[0].labels, ref[0].labels) << f;
+    expect_same_geometry(v[0], ref[0]);
+  }
+  const InputResult r = read_label_image_contours(dir / "tiny.nrrd");
+  EXPECT_EQ(r.format, "label-image");
+  EXPECT_EQ(r.sequence.frames.size(), 1u);
+  EXPECT_EQ(labels(r.sequence), (std::vector<std::string>{"1", "2"}));
+}
+
+TEST(LabelImagesBadInput, EachFailureHasItsOwnCode) {
+  const fs::path dir = temp_dir("bad");
+  const Grid g = rasterise(ellipsoid(10, 8, 12), {30, 30, 5}, {1, 1, 5}, 1);
+
+  // Non-integer values.
+  write_label_volume(dir / "half.nii.gz", {g.vol}, {ImagePixel::Float32, 0.5});
+  EXPECT_EQ(code_of([&] { read_label_series(dir / "half.nii.gz"); }), ErrorCode::Format);
+
+  // A 2D image.
+  LabelVolume flat = g.vol;
+  flat.dims[2] = 1;
+  flat.labels.resize(30 * 30);
+  write_label_volume(dir / "flat.nrrd", {flat}, {ImagePixel::Int16, 1.0, true});
+  EXPECT_EQ(code_of([&] { read_label_series(dir / "flat.nrrd"); }), ErrorCode::Format);
+
+  // A label that is absent, and a name without a preset, and an unknown preset name.
+  LabelSeries s;
+  s.frames = {g.vol};
+  MaskExtractOptions o;
+  o.labels = {"7"};
+  EXPECT_EQ(code_of([&] { extract_mask_contours(s, o); }), ErrorCode::UnknownLabel);
+  o.labels = {"lv"};
+  EXPECT_EQ(code_of([&] { extract_mask_contours(s, o); }), ErrorCode::UnknownLabel);
+  o.preset = "acdc";  // lv = 3, absent
+  EXPECT_EQ(code_of([&] { extract_mask_contours(s, o); }), ErrorCode::UnknownLabel);
+  o.labels = {"liver"};
+  EXPECT_EQ(code_of([&] { extract_mask_contours(s, o); }), ErrorCode::UnknownLabel);
+  LabelSeries empty = s;
+  std::fill(empty.frames[0].labels.begin(), empty.frames[0].labels.end(), 0);
+  EXPECT_EQ(code_of([&] { extract_mask_contours(empty); }), ErrorCode::UnknownLabel);
+
+  // Frames of different sizes; of different orientation.
+  fs::create_directories(dir / "sizes");
+  write_label_volume(dir / "sizes" / "a.nii.gz", {g.vol});
+  write_label_volume(dir / "sizes" / "b.nii.gz", {rasterise(ellipsoid(10, 8, 12), {32, 30, 5}, {1, 1, 5}).vol});
+  EXPECT_EQ(code_of([&] { read_label_series(dir / "sizes"); }), ErrorCode::Format);
+  fs::create_directories(dir / "turned");
+  LabelVolume turned = g.vol;
+  turned.direction = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  write_label_volume(dir / "turned" / "a.nii.gz", {g.vol});
+  write_label_volume(dir / "turned" / "b.nii.gz", {turned});
+  EXPECT_EQ(code_of([&] { read_label_series(dir / "turned"); }), ErrorCode::NotParallel);
+
+  // A frame without the label.
+  LabelSeries gap = s;
+  gap.frames.push_back(empty.frames[0]);
+  EXPECT_EQ(code_of([&] { extract_mask_contours(gap); }), ErrorCode::EmptyFrame);
+
+  // Truncated .nii.gz, every prefix length class: header only, half, all but the last bytes.
+  write_label_volume(dir / "whole.nii.gz", {g.vol});
+  std::ifstream in(dir / "whole.nii.gz", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  for (std::size_t keep : {std::size_t{40}, bytes.size() / 2, bytes.size() - 9}) {
+    std::ofstream(dir / "cut.nii.gz", std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(keep));
+    const ErrorCode c = code_of([&] { read_label_series(dir / "cut.nii.gz"); });
+    EXPECT_EQ(c, ErrorCode::Parse) << "kept " << keep << " of " << bytes.size() << " bytes";
+  }
+
+  // Missing file; MetaImage header whose data file is missing; empty file.
+  EXPECT_EQ(code_of([&] { read_label_series(dir / "none.nii.gz"); }), ErrorCode::FileNotFound);
+  std::ofstream(dir / "lone.mhd") << "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
+                                     "ElementDataFile = lone.raw\n";
+  EXPECT_EQ(code_of([&] { read_label_series(dir / "lone.mhd"); }), ErrorCode::MissingCompanion);
+  std::ofstream(dir / "zero.nii").close();
+  EXPECT_EQ(code_of([&] { read_label_series(dir / "zero.nii"); }), ErrorCode::EmptyFile);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace c4d

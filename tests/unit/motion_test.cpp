@@ -1,0 +1,105 @@
+// Properties of the RBF deformation and contour matching (Lim et al., "4D Morphing").
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "contour4d/core/errors.h"
+#include "contour4d/motion/contour_matching.h"
+#include "contour4d/motion/rbf.h"
+
+namespace c4d {
+namespace {
+
+std::vector<Vec2> ellipse(double a, double b, Vec2 c, int n, double phase = 0) {
+  std::vector<Vec2> p;
+  for (int i = 0; i < n; ++i) {
+    const double t = phase + 2 * std::numbers::pi * i / n;
+    p.push_back({c.x + a * std::cos(t), c.y + b * std::sin(t)});
+  }
+  return p;
+}
+
+double distance_to_polygon(Vec2 q, const std::vector<Vec2>& poly) {
+  double best = 1e300;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()], ab = b - a;
+    const double t = std::clamp(dot(q - a, ab) / dot(ab, ab), 0.0, 1.0);
+    best = std::min(best, norm(q - (a + t * ab)));
+  }
+  return best;
+}
+
+std::vector<Vec3> cloud() {
+  std::vector<Vec3> p;
+  for (int i = 0; i < 30; ++i) p.push_back({10 * std::cos(i * 1.3), 10 * std::sin(i * 0.7), 5.0 * (i % 7) - 15});
+  return p;
+}
+
+TEST(Rbf, InterpolatesSourcesExactly) {
+  const auto src = cloud();
+  std::vector<Vec3> dst = src;
+  for (std::size_t i = 0; i < dst.size(); ++i) dst[i] += Vec3{std::sin(i * 1.0), std::cos(i * 2.0), 0.5};
+  const RbfDeformer f(src, dst);
+  for (std::size_t i = 0; i < src.size(); ++i) EXPECT_NEAR(distance(f.apply(src[i]), dst[i]), 0, 1e-8);
+}
+
+TEST(Rbf, AffineTermReproducesRigidMotionEverywhere) {
+  const auto src = cloud();
+  const double c = std::cos(0.4), s = std::sin(0.4);
+  auto rigid = [&](Vec3 p) { return Vec3{c * p.x - s * p.y + 3, s * p.x + c * p.y - 2, p.z + 7}; };
+  std::vector<Vec3> dst;
+  for (const Vec3& p : src) dst.push_back(rigid(p));
+  const RbfDeformer f(src, dst);
+  for (Vec3 q : {Vec3{1, 2, 3}, Vec3{-20, 5, 40}, Vec3{0, 0, 0}}) EXPECT_NEAR(distance(f.apply(q), rigid(q)), 0, 1e-7);
+}
+
+TEST(Rbf, SubStepsReachTheTargets) {
+  const auto src = cloud();
+  std::vector<Vec3> dst = src, pts = src;
+  for (Vec3& p : dst) p = p * 1.2 + Vec3{0, 0, 3};
+  deform_rbf(pts, src, dst, 10);
+  for (std::size_t i = 0; i < src.size(); ++i) EXPECT_NEAR(distance(pts[i], dst[i]), 0, 1e-6);
+}
+
+TEST(Rbf, CoplanarSourcesWithAffineTermAreReported) {
+  std::vector<Vec3> flat;
+  for (int i = 0; i < 8; ++i) flat.push_back({std::cos(i * 0.8), std::sin(i * 0.8), 0});
+  EXPECT_THROW(RbfDeformer(flat, flat), SolverError);
+}
+
+TEST(ContourMatching, CrossingContoursUseBreakPointsAndLandOnTarget) {
+  const auto src = ellipse(10, 6, {0, 0}, 120);
+  const auto dst = ellipse(7, 9, {1, 0.5}, 90);
+  const ContourMatch m = match_contour(src, dst);
+  EXPECT_EQ(m.method, MatchMethod::BreakPoints);
+  EXPECT_EQ(m.break_points, 4);
+  ASSERT_EQ(m.targets.size(), src.size());
+  for (Vec2 q : m.targets) EXPECT_LT(distance_to_polygon(q, dst), 1e-9);
+}
+
+TEST(ContourMatching, NestedContoursAlignAndKeepCyclicOrder) {
+  const auto src = ellipse(10, 10, {0, 0}, 100);
+  const auto dst = ellipse(5, 5, {0.5, 0}, 64, 0.3);
+  const ContourMatch m = match_contour(src, dst);
+  EXPECT_EQ(m.method, MatchMethod::Aligned);
+  // Concentric circles: each point moves radially inwards, so the angle is kept.
+  for (std::size_t i = 0; i < src.size(); ++i) {
+    const double a0 = std::atan2(src[i].y, src[i].x), a1 = std::atan2(m.targets[i].y, m.targets[i].x - 0.5);
+    EXPECT_NEAR(std::remainder(a1 - a0, 2 * std::numbers::pi), 0, 0.05);
+    EXPECT_LT(distance_to_polygon(m.targets[i], dst), 1e-9);
+  }
+}
+
+TEST(ContourMatching, TargetOrientationAndStartPointDoNotMatter) {
+  const auto src = ellipse(10, 6, {0, 0}, 80);
+  auto dst = ellipse(7, 9, {1, 0.5}, 90);
+  const ContourMatch a = match_contour(src, dst);
+  std::reverse(dst.begin(), dst.end());
+  std::rotate(dst.begin(), dst.begin() + 17, dst.end());
+  const ContourMatch b = match_contour(src, dst);
+  for (std::size_t i = 0; i < src.size(); ++i) EXPECT_NEAR(norm(a.targets[i] - b.targets[i]), 0, 1e-9);
+}
+
+}  // namespace
+}  // namespace c4d

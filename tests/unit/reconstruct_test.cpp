@@ -1,0 +1,342 @@
+// One-frame surface (Lim et al. 2014, "Constructing a 3D model of the First Cardiac Frame"):
+// topology, conformity, volume, quality and invariance on stacks built in code.
+#include "contour4d/surface/reconstruct.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "contour4d/core/errors.h"
+#include "contour4d/surface/mesh_check.h"
+
+namespace {
+
+using c4d::Contour;
+using c4d::Vec2;
+using c4d::Vec3;
+
+// A shape of slice z: a list of 2D polygons (CCW outer, any orientation accepted).
+using Polys = std::vector<std::vector<Vec2>>;
+using Shape = std::function<std::vector<std::vector<Vec2>>(double z)>;
+
+std::vector<Vec2> ellipse(double cx, double cy, double a, double b, int n, double wobble = 0.0) {
+  std::vector<Vec2> p;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * i / n;
+    const double s = 1.0 + wobble * (0.6 * std::sin(3 * t + 0.4) + 0.4 * std::cos(5 * t));
+    p.push_back({cx + s * a * std::cos(t), cy + s * b * std::sin(t)});
+  }
+  return p;
+}
+
+c4d::Sequence stack(const std::vector<double>& zs, const Shape& shape) {
+  c4d::Sequence seq;
+  seq.frames.resize(1);
+  for (std::size_t i = 0; i < zs.size(); ++i) {
+    c4d::Slice s;
+    s.id = static_cast<int>(i);
+    s.offset = zs[i];
+    for (const auto& poly : shape(zs[i])) {
+      Contour c;
+      c.label = "lv";
+      c.slice = s.id;
+      for (const Vec2& q : poly) c.points.push_back({q.x, q.y, zs[i]});
+      s.contours.push_back(c);
+    }
+    seq.frames[0].slices.push_back(s);
+  }
+  return seq;
+}
+
+std::vector<double> range(double z0, double z1, double dz) {
+  std::vector<double> z;
+  for (double v = z0; v <= z1 + 1e-9; v += dz) z.push_back(v);
+  return z;
+}
+
+double point_segment(Vec3 p, Vec3 a, Vec3 b) {
+  const Vec3 ab = b - a;
+  double t = c4d::dot(p - a, ab) / std::max(1e-300, c4d::dot(ab, ab));
+  t = std::clamp(t, 0.0, 1.0);
+  return c4d::norm(p - (a + t * ab));
+}
+
+// Largest distance from the input contour vertices to the nearest mesh edge (contours are mesh edges,
+// so this is ~0 when every input vertex is kept and the contour runs along edges).
+double conformity_max(const c4d::Sequence& seq, const c4d::TriangleMesh& m) {
+  double worst = 0.0;
+  for (const auto& s : seq.frames[0].slices)
+    for (const auto& c : s.contours)
+      for (const Vec3& p : c.points) {
+        double best = 1e300;
+        for (const auto& t : m.triangles)
+          for (int k = 0; k < 3; ++k) best = std::min(best, point_segment(p, m.positions[t[k]], m.positions[t[(k + 1) % 3]]));
+        worst = std::max(worst, best);
+      }
+  return worst;
+}
+
+struct Angles {
+  double min_deg = 180, share_40_80 = 0, share_below_25 = 0;
+};
+
+Angles angles(const c4d::TriangleMesh& m) {
+  Angles a;
+  std::size_t n = 0, good = 0, low = 0;
+  for (const auto& t : m.triangles) {
+    bool has_low = false;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = m.positions[t[k]], u = m.positions[t[(k + 1) % 3]] - p, v = m.positions[t[(k + 2) % 3]] - p;
+      const double ang = std::acos(std::clamp(c4d::dot(u, v) / (c4d::norm(u) * c4d::norm(v)), -1.0, 1.0)) * 180 / M_PI;
+      a.min_deg = std::min(a.min_deg, ang);
+      ++n;
+      if (ang >= 40 && ang <= 80) ++good;
+      if (ang < 25) has_low = true;
+    }
+    if (has_low) ++low;
+  }
+  a.share_40_80 = static_cast<double>(good) / std::max<std::size_t>(1, n);
+  a.share_below_25 = static_cast<double>(low) / std::max<std::size_t>(1, m.triangles.size());
+  return a;
+}
+
+void expect_closed(const c4d::TriangleMesh& m, long euler, std::size_t components) {
+  const c4d::MeshCheck c = c4d::check_mesh(m, true);
+  EXPECT_EQ(c.boundary_edges, 0u);
+  EXPECT_EQ(c.nonmanifold_edges, 0u);
+  EXPECT_EQ(c.nonmanifold_vertices, 0u);
+  EXPECT_EQ(c.misoriented_edges, 0u);
+  EXPECT_EQ(c.degenerate_triangles, 0u);
+  EXPECT_EQ(c.euler, euler);
+  EXPECT_EQ(c.components, components);
+  EXPECT_GT(c.signed_volume, 0.0);
+  EXPECT_FALSE(c.self_intersects);
+}
+
+c4d::SurfaceOptions coarse() {
+  c4d::SurfaceOptions o;
+  o.remesh = false;
+  o.smoothing_iterations = 0;
+  return o;
+}
+
+TEST(Reconstruct, CylinderIsClosedOutwardAndThroughTheContours) {
+  const auto seq = stack(range(0, 20, 5), [](double) { return Polys{ellipse(0, 0, 10, 10, 63)}; });
+  for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+    c4d::SurfaceReport rep;
+    const auto m = c4d::reconstruct_frame(seq, 0, opt, &rep);
+    expect_closed(m, 2, 1);
+    EXPECT_TRUE(rep.closed);
+    EXPECT_EQ(rep.caps, 2);
+    EXPECT_EQ(rep.connections.size(), 4u);
+    EXPECT_TRUE(rep.warnings.empty());
+    // Volume: the prism of the 63-gon between the end slices plus two domes no higher than 2.5 mm.
+    const double prism = 0.5 * 63 * 100 * std::sin(2 * M_PI / 63) * 20;
+    EXPECT_GT(c4d::signed_volume(m), prism);
+    EXPECT_LT(c4d::signed_volume(m), prism + 2 * (2.0 / 3.0) * M_PI * 100 * 2.5 * 1.01);
+    // No overshoot beyond half a slice spacing.
+    for (const Vec3& p : m.positions) {
+      EXPECT_GE(p.z, -2.5 - 1e-9);
+      EXPECT_LE(p.z, 22.5 + 1e-9);
+    }
+  }
+}
+
+TEST(Reconstruct, ContoursAreMeshEdges) {
+  // Keep every input vertex (corner angle 0): conformity is exact.
+  const auto seq = stack(range(0, 15, 5), [](double z) { return Polys{ellipse(0.2 * z, 0, 12 - 0.3 * z, 8, 70, 0.05)}; });
+  c4d::SurfaceOptions o;
+  o.corner_angle_deg = 0;
+  const auto m = c4d::reconstruct_frame(seq, 0, o);
+  expect_closed(m, 2, 1);
+  EXPECT_LT(conformity_max(seq, m), 1e-9);
+}
+
+TEST(Reconstruct, SphereStackVolume) {
+  const double R = 20;
+  const auto seq = stack(range(-17.5, 17.5, 5), [&](double z) {
+    return Polys{ellipse(0, 0, std::sqrt(R * R - z * z), std::sqrt(R * R - z * z), 128)};
+  });
+  c4d::SurfaceReport rep;
+  const auto m = c4d::reconstruct_frame(seq, 0, {}, &rep);
+  expect_closed(m, 2, 1);
+  const double truth = 4.0 / 3.0 * M_PI * R * R * R;
+  const double err = (c4d::signed_volume(m) - truth) / truth;
+  const Angles a = angles(m);
+  std::printf("sphere R=20, 5 mm slices: volume error %.2f %%, %zu vertices, angles in 40-80: %.1f %%, "
+              "triangles with an angle < 25: %.3f %%, min angle %.1f deg\n",
+              100 * err, m.positions.size(), 100 * a.share_40_80, 100 * a.share_below_25, a.min_deg);
+  EXPECT_LT(std::abs(err), 0.03);
+  EXPECT_GT(a.min_deg, 5.0);
+  EXPECT_GT(a.share_40_80, 0.7);
+}
+
+TEST(Reconstruct, BranchOneToTwoAndTwoToOne) {
+  // A trunk (slices 0, 5) splitting into two legs (slices 10, 15); then the same upside down.
+  const Shape split = [](double z) {
+    if (z < 7) return Polys{ellipse(0, 0, 16, 8, 80)};
+    return Polys{ellipse(-7, 0, 6, 6, 40), ellipse(7, 0, 6, 6, 40)};
+  };
+  const Shape merge = [&](double z) { return split(15 - z); };
+  for (const Shape& shape : {split, merge}) {
+    const auto seq = stack(range(0, 15, 5), shape);
+    for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+      c4d::SurfaceReport rep;
+      const auto m = c4d::reconstruct_frame(seq, 0, opt, &rep);
+      expect_closed(m, 2, 1);
+      EXPECT_EQ(rep.branchings, 1);
+      EXPECT_EQ(rep.caps, 3);
+    }
+  }
+}
+
+TEST(Reconstruct, StackOfAnnuliIsATorus) {
+  const auto seq = stack(range(0, 20, 5), [](double) {
+    auto hole = ellipse(0, 0, 7, 7, 40);
+    std::reverse(hole.begin(), hole.end());
+    return Polys{ellipse(0, 0, 18, 18, 96), hole};
+  });
+  for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+    c4d::SurfaceReport rep;
+    const auto m = c4d::reconstruct_frame(seq, 0, opt, &rep);
+    expect_closed(m, 0, 1);  // genus 1
+    EXPECT_EQ(rep.caps, 2);  // ring caps, top and bottom
+  }
+}
+
+TEST(Reconstruct, HoleThatEndsGetsItsOwnCap) {
+  // A cup: a hole through the upper slices only.
+  const auto seq = stack(range(0, 20, 5), [](double z) {
+    Polys s{ellipse(0, 0, 18, 18, 96)};
+    if (z > 7) s.push_back(ellipse(1, 0, 8, 8, 48));
+    return s;
+  });
+  c4d::SurfaceReport rep;
+  const auto m = c4d::reconstruct_frame(seq, 0, {}, &rep);
+  expect_closed(m, 2, 1);
+}
+
+TEST(Reconstruct, SeparateStructuresAndSingleSlice) {
+  const auto two = stack(range(0, 10, 5), [](double) { return Polys{ellipse(-30, 0, 8, 8, 40), ellipse(30, 0, 8, 8, 40)}; });
+  expect_closed(c4d::reconstruct_frame(two, 0, {}), 4, 2);
+  const auto one = stack({0.0}, [](double) { return Polys{ellipse(0, 0, 10, 6, 50)}; });
+  expect_closed(c4d::reconstruct_frame(one, 0, {}), 2, 1);
+}
+
+TEST(Reconstruct, OpenCapsLeaveTheEndsOpen) {
+  const auto seq = stack(range(0, 20, 5), [](double) { return Polys{ellipse(0, 0, 10, 10, 63)}; });
+  c4d::SurfaceOptions o;
+  o.caps = c4d::CapStyle::Open;
+  const auto m = c4d::reconstruct_frame(seq, 0, o);
+  const auto c = c4d::check_mesh(m);
+  EXPECT_GT(c.boundary_edges, 0u);
+  EXPECT_EQ(c.nonmanifold_edges, 0u);
+  EXPECT_EQ(c.euler, 0);  // a tube
+}
+
+// Sorted positions of a mesh mapped by `back` (inverse transform), rounded comparison.
+std::vector<Vec3> sorted_positions(const c4d::TriangleMesh& m, const std::function<Vec3(Vec3)>& back) {
+  std::vector<Vec3> p;
+  for (const Vec3& q : m.positions) p.push_back(back(q));
+  std::sort(p.begin(), p.end(), [](Vec3 a, Vec3 b) {
+    if (std::abs(a.z - b.z) > 1e-7) return a.z < b.z;
+    if (std::abs(a.x - b.x) > 1e-7) return a.x < b.x;
+    return a.y < b.y;
+  });
+  return p;
+}
+
+void expect_same_surface(const c4d::TriangleMesh& a, const c4d::TriangleMesh& b, const std::function<Vec3(Vec3)>& back) {
+  ASSERT_EQ(a.positions.size(), b.positions.size());
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  EXPECT_NEAR(c4d::signed_volume(a), c4d::signed_volume(b), 1e-6 * std::abs(c4d::signed_volume(a)));
+  EXPECT_NEAR(c4d::surface_area(a), c4d::surface_area(b), 1e-6 * c4d::surface_area(a));
+  const auto pa = sorted_positions(a, [](Vec3 q) { return q; }), pb = sorted_positions(b, back);
+  double worst = 0;
+  for (std::size_t i = 0; i < pa.size(); ++i) worst = std::max(worst, c4d::distance(pa[i], pb[i]));
+  EXPECT_LT(worst, 1e-6);
+}
+
+c4d::Sequence irregular() {
+  return stack(range(0, 20, 5), [](double z) {
+    return Polys{ellipse(0.3 * z, -0.1 * z, 14 - 0.2 * z, 9 + 0.1 * z, 57 + static_cast<int>(z), 0.08)};
+  });
+}
+
+TEST(Reconstruct, InvariantToStartPointOrientationAndSliceOrder) {
+  const auto seq = irregular();
+  for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+    const auto ref = c4d::reconstruct_frame(seq, 0, opt);
+    auto moved = seq;
+    for (auto& s : moved.frames[0].slices)
+      for (auto& c : s.contours) {
+        std::reverse(c.points.begin(), c.points.end());
+        std::rotate(c.points.begin(), c.points.begin() + 11, c.points.end());
+      }
+    std::reverse(moved.frames[0].slices.begin(), moved.frames[0].slices.end());
+    expect_same_surface(ref, c4d::reconstruct_frame(moved, 0, opt), [](Vec3 q) { return q; });
+  }
+}
+
+TEST(Reconstruct, InvariantToRigidMotion) {
+  const auto seq = irregular();
+  // Rotation about a skew axis and a translation; the stack frame (normal, u, v) moves with it.
+  const double c = std::cos(0.7), s = std::sin(0.7), c2 = std::cos(0.3), s2 = std::sin(0.3);
+  auto R = [&](Vec3 p) {
+    const Vec3 a{c * p.x - s * p.y, s * p.x + c * p.y, p.z};
+    return Vec3{a.x, c2 * a.y - s2 * a.z, s2 * a.y + c2 * a.z};
+  };
+  auto Rinv = [&](Vec3 p) {
+    const Vec3 a{p.x, c2 * p.y + s2 * p.z, -s2 * p.y + c2 * p.z};
+    return Vec3{c * a.x + s * a.y, -s * a.x + c * a.y, a.z};
+  };
+  const Vec3 t{12.5, -40.25, 101.0};
+  auto moved = seq;
+  moved.normal = R(seq.normal);
+  moved.u = R(seq.u);
+  moved.v = R(seq.v);
+  for (auto& sl : moved.frames[0].slices) {
+    sl.offset += c4d::dot(moved.normal, t);
+    for (auto& ct : sl.contours)
+      for (auto& p : ct.points) p = R(p) + t;
+  }
+  for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+    const auto ref = c4d::reconstruct_frame(seq, 0, opt);
+    const auto out = c4d::reconstruct_frame(moved, 0, opt);
+    expect_same_surface(ref, out, [&](Vec3 q) { return Rinv(q - t); });
+  }
+}
+
+TEST(Reconstruct, Speed) {
+  // Not a timed assertion: prints the throughput the issue asks for (>= 100k output vertices/s).
+  const double R = 40;
+  const auto seq = stack(range(-37.5, 37.5, 5), [&](double z) {
+    return Polys{ellipse(0, 0, std::sqrt(R * R - z * z), 0.8 * std::sqrt(R * R - z * z), 200, 0.03)};
+  });
+  c4d::SurfaceOptions o;
+  o.check_self_intersections = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto m = c4d::reconstruct_frame(seq, 0, o);
+  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("speed: %zu vertices in %.3f s = %.0f vertices/s\n", m.positions.size(), sec, m.positions.size() / sec);
+  expect_closed(m, 2, 1);
+}
+
+TEST(Reconstruct, BadInputThrows) {
+  c4d::Sequence empty;
+  EXPECT_THROW(c4d::reconstruct_frame(empty, 0, {}), c4d::InvalidInput);
+  auto seq = stack({0.0, 5.0}, [](double) { return Polys{ellipse(0, 0, 5, 5, 20)}; });
+  seq.frames[0].slices[1].contours[0].label = "rv";
+  EXPECT_THROW(c4d::reconstruct_frame(seq, 0, {}), c4d::InvalidInput);
+  c4d::SurfaceOptions o;
+  o.label = "rv";
+  expect_closed(c4d::reconstruct_frame(seq, 0, o), 2, 1);
+  o.label = "la";
+  EXPECT_THROW(c4d::reconstruct_frame(seq, 0, o), c4d::InvalidInput);
+}
+
+}  // namespace

@@ -1,0 +1,114 @@
+// Tiling between two contours, bridges, resampling and caps: combinatorial properties.
+#include "contour4d/surface/tiling.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "contour4d/core/contour.h"
+#include "contour4d/surface/capping.h"
+#include "contour4d/surface/resample.h"
+
+namespace {
+
+using c4d::Vec2;
+using c4d::Vec3;
+
+std::vector<Vec2> ellipse(double a, double b, int n, double phase = 0.0) {
+  std::vector<Vec2> p;
+  for (int i = 0; i < n; ++i) {
+    const double t = phase + 2.0 * M_PI * i / n;
+    p.push_back({a * std::cos(t), b * std::sin(t)});
+  }
+  return p;
+}
+
+// Directed edge use counts.
+std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed(const std::vector<c4d::Triangle>& t) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> m;
+  for (const auto& f : t)
+    for (int k = 0; k < 3; ++k) ++m[{f[k], f[(k + 1) % 3]}];
+  return m;
+}
+
+TEST(Tiling, BandUsesEveryChainEdgeOnceAndFacesOutward) {
+  std::vector<Vec3> pos;
+  std::vector<std::uint32_t> lo, up;
+  for (const Vec2& p : ellipse(10, 6, 23)) {
+    lo.push_back(static_cast<std::uint32_t>(pos.size()));
+    pos.push_back({p.x, p.y, 0});
+  }
+  for (const Vec2& p : ellipse(8, 7, 31, 0.3)) {
+    up.push_back(static_cast<std::uint32_t>(pos.size()));
+    pos.push_back({p.x, p.y, 5});
+  }
+  const auto tris = c4d::tile_chains(lo, up, pos);
+  EXPECT_EQ(tris.size(), lo.size() + up.size());
+  const auto use = directed(tris);
+  for (std::size_t k = 0; k < lo.size(); ++k) EXPECT_EQ(use.at({lo[k], lo[(k + 1) % lo.size()]}), 1);
+  for (std::size_t k = 0; k < up.size(); ++k) EXPECT_EQ(use.at({up[(k + 1) % up.size()], up[k]}), 1);
+  for (const auto& [e, n] : use) EXPECT_EQ(n, 1);
+  for (const auto& f : tris) {
+    // No flat triangle: both slices appear.
+    const bool has_lo = f[0] < lo.size() || f[1] < lo.size() || f[2] < lo.size();
+    const bool has_up = f[0] >= lo.size() || f[1] >= lo.size() || f[2] >= lo.size();
+    EXPECT_TRUE(has_lo && has_up);
+    // Outward: the normal points away from the axis.
+    const Vec3 a = pos[f[0]], b = pos[f[1]], c = pos[f[2]];
+    const Vec3 n = c4d::cross(b - a, c - a), centre = (a + b + c) / 3.0;
+    EXPECT_GT(n.x * centre.x + n.y * centre.y, 0.0);
+  }
+}
+
+TEST(Tiling, BridgeWalksThereAndBack) {
+  const std::vector<std::uint32_t> a{0, 1, 2, 3}, b{10, 11, 12}, br{20, 21};
+  const auto m = c4d::bridge_chains(a, 1, b, 2, br);
+  EXPECT_EQ(m, (std::vector<std::uint32_t>{0, 1, 20, 21, 12, 10, 11, 12, 21, 20, 1, 2, 3}));
+}
+
+TEST(Resample, EvenSpacingAndSamePointsWhicheverWayTheContourRuns) {
+  const auto e = c4d::canonical_polygon(ellipse(20, 11, 57), true);
+  c4d::ResampleOptions o;
+  o.edge = 1.0;
+  const auto r = c4d::resample_closed(e, o);
+  for (std::size_t k = 0; k < r.size(); ++k) EXPECT_LE(c4d::norm(r[(k + 1) % r.size()] - r[k]), 1.0 + 1e-9);
+  auto rev = e;
+  std::reverse(rev.begin(), rev.end());
+  std::rotate(rev.begin(), rev.begin() + 7, rev.end());
+  const auto rc = c4d::resample_closed(c4d::canonical_polygon(rev, true), o);
+  ASSERT_EQ(rc.size(), r.size());
+  for (std::size_t k = 0; k < r.size(); ++k) EXPECT_NEAR(c4d::norm(rc[k] - r[k]), 0.0, 1e-9);
+}
+
+TEST(Resample, CornersAreKept) {
+  const std::vector<Vec2> square{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  const auto r = c4d::resample_closed(square, {1.5, 30.0});
+  for (const Vec2& c : square) EXPECT_NE(std::find(r.begin(), r.end(), c), r.end());
+  EXPECT_EQ(r.size(), 28u);  // 4 sides of 10 mm in 7 pieces
+}
+
+TEST(Capping, CapCoversTheRegionAndKeepsLoopEdges) {
+  const auto outer = c4d::canonical_polygon(ellipse(15, 9, 60), true);
+  const auto hole = c4d::canonical_polygon(ellipse(4, 3, 20), false);
+  for (c4d::CapStyle style : {c4d::CapStyle::Flat, c4d::CapStyle::Rounded}) {
+    const auto cap = c4d::triangulate_cap({outer, hole}, style, {1.5, 2.0});
+    double area = 0.0;
+    for (const auto& t : cap.triangles) {
+      const double a = 0.5 * c4d::cross(cap.points[t[1]] - cap.points[t[0]], cap.points[t[2]] - cap.points[t[0]]);
+      EXPECT_GT(a, 0.0);
+      area += a;
+    }
+    EXPECT_NEAR(area, c4d::signed_area(outer) + c4d::signed_area(hole), 1e-6);
+    const auto use = directed(cap.triangles);
+    for (std::size_t k = 0; k < outer.size(); ++k)
+      EXPECT_EQ(use.count({static_cast<std::uint32_t>(k), static_cast<std::uint32_t>((k + 1) % outer.size())}), 1u);
+    const double hmax = *std::max_element(cap.height.begin(), cap.height.end());
+    if (style == c4d::CapStyle::Flat) EXPECT_EQ(hmax, 0.0);
+    else EXPECT_NEAR(hmax, 2.0, 0.3);
+    EXPECT_GT(cap.points.size(), outer.size() + hole.size());
+  }
+}
+
+}  // namespace
