@@ -8,3 +8,7 @@ if(TARGET contour4d_render OR OpenGL_EGL_FOUND)
   target_link_libraries(playback_bench PRIVATE contour4d contour4d_render)
   c4d_set_warnings(playback_bench)
 endif()
+# Issue 4: the whole 4D run of the 20-frame left-heart cycle, against the paper's figure and method.
+add_executable(morph_bench ${CMAKE_CURRENT_LIST_DIR}/morph_bench.cpp)
+target_link_libraries(morph_bench PRIVATE benchmark::benchmark contour4d TBB::tbb)
+c4d_set_warnings(morph_bench)

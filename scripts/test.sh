@@ -63,4 +63,11 @@ if [ $run_fuzz -eq 1 ]; then
     "$f" -max_total_time="$fuzz_seconds" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 "$work" 2>&1 | tail -n 12
     rm -rf "$work"
   done
+  # The label-image reader goes through ITK (GCC only): mutation driver from the sanitizer build.
+  if [ -x "$root/build-sanitize/tests/fuzz_images_mutate" ]; then
+    echo "-- fuzz_images (mutation driver, ASan+UBSan)"
+    "$root/build-sanitize/tests/fuzz_images_mutate" -max_total_time="$fuzz_seconds" "$root/tests/corpus/images"
+  else
+    echo "-- fuzz_images skipped: run scripts/test.sh --sanitize first (it builds build-sanitize/tests/fuzz_images_mutate)"
+  fi
 fi

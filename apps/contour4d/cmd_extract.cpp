@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "cli.h"
+#include "input_options.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/io/contours_json.h"
 #include "contour4d/io/input.h"
@@ -20,8 +21,7 @@ namespace {
 struct ExtractArgs {
   std::string input;
   std::string out;
-  std::vector<std::string> types;
-  std::string label;
+  InputOptions in;
 };
 
 std::string summary(const InputResult& r, const std::string& out) {
@@ -76,10 +76,7 @@ std::string summary(const InputResult& r, const std::string& out) {
 }
 
 int run_extract(const ExtractArgs& a) {
-  InputOptions o;
-  o.contour_types = a.types;
-  o.label = a.label;
-  const InputResult r = read_contours(a.input, o);
+  const InputResult r = read_contours(a.input, a.in);
   write_file_atomic(a.out, format_contours_json(r.sequence));
   std::cout << summary(r, a.out);
   return 0;
@@ -91,19 +88,20 @@ void add_extract_command(CLI::App& root, std::vector<Command>& commands) {
   auto args = std::make_shared<ExtractArgs>();
   CLI::App* app = root.add_subcommand(
       "extract",
-      "Read contours (contour4d JSON file, or a biv-me GPFile folder), validate them as a stack of\n"
-      "parallel slices, and write them as contour4d JSON (mm, patient space; docs/formats.md).");
-  app->add_option("input", args->input, "contour JSON file, GPFile folder, or a folder holding guidepoints/")
+      "Read contours (contour4d JSON, a biv-me GPFile folder, a Sunnybrook patient folder, or label images:\n"
+      "NIfTI/NRRD/MetaImage masks, contours extracted by marching squares), validate them as a stack of\n"
+      "parallel slices, and write them as contour4d JSON (mm, patient space; docs/formats.md, docs/images.md).");
+  app->add_option("input", args->input, "contour JSON, GPFile folder, Sunnybrook folder, or label image(s)")
       ->required();
   app->add_option("-o,--output", args->out, "contour JSON file to write")->required();
-  app->add_option("--type", args->types,
-                  "GPFile contour types to keep (repeatable; default SAX_LV_ENDOCARDIAL), e.g. SAX_LV_EPICARDIAL");
-  app->add_option("--label", args->label, "keep only contours with this label (e.g. lv-endo)");
+  add_input_options(app, args->in);
   app->footer(
       "Examples:\n"
       "  contour4d extract ../shared/data/bivme-patient1/guidepoints -o lv.json\n"
       "  contour4d extract ../shared/data/bivme-patient1 --type SAX_LV_ENDOCARDIAL --type SAX_LV_EPICARDIAL -o lv2.json\n"
       "  contour4d extract lv2.json --label lv-epi -o epi.json\n"
+      "  contour4d extract ../shared/data/sunnybrook-SC-HF-I-1 -o sb.json          # endocardium, 2 phases\n"
+      "  contour4d extract 'patient001_frame*_gt.nii.gz' --labels acdc --label lv -o lv.json\n"
       "Exit codes name the problem (10 file not found, 12 parse error, 15 degenerate contour, ...; docs/formats.md).");
   commands.push_back({app, [args] { return run_extract(*args); }});
 }

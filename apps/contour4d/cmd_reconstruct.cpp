@@ -9,6 +9,7 @@
 #include <tbb/global_control.h>
 
 #include "cli.h"
+#include "input_options.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/io/input.h"
 #include "contour4d/io/mesh_output.h"
@@ -23,8 +24,7 @@ struct ReconstructArgs {
   std::string input;
   std::string output;
   int frame = -1;
-  std::string label;
-  std::vector<std::string> types;
+  InputOptions in;
   double edge = SurfaceOptions{}.edge;
   std::string cap = "rounded";
   std::string method = "rbf-project";
@@ -53,15 +53,13 @@ int run_reconstruct(const ReconstructArgs& a) {
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, a.threads);
-  InputOptions in;
-  in.label = a.label;
-  in.contour_types = a.types;
-  const InputResult read = read_contours(a.input, in);
+  const InputResult read = read_contours(a.input, a.in);
   const Sequence& seq = read.sequence;
   OutputDir out(a.output);  // checks the destination is writable before the work starts
 
   Reconstruct4DOptions opt;
-  opt.surface.label = a.label;
+  // Label images name contours by the label's name (or number), which extraction already selected.
+  opt.surface.label = read.format == "label-image" ? std::string() : a.in.label;
   opt.surface.edge = a.edge;
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
@@ -139,7 +137,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   report["esv_ml"] = esv / 1000.0;
   report["ef_percent"] = edv > 0 ? 100.0 * (edv - esv) / edv : 0.0;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  report["seconds"] = seconds;
+  // No run time in report.json: the same input must give byte-identical outputs (it is printed below).
 
   write_mesh_sequence(out, result, fmt::format("contour4d reconstruct {}", a.input));
   out.write("report.json", report.dump(2) + "\n");
@@ -169,13 +167,14 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       "  contour4d reconstruct contours.json --frame 0 -o out/frame0      # one frame only\n"
       "  contour4d reconstruct contours.json --label lv-endo --edge 1.0 -o out/lv\n"
       "  contour4d reconstruct contours.json --cap open -o out/cfd        # open ends for CFD inlets\n"
-      "INPUT is a contour JSON file or a biv-me GPFile folder. Outputs: OUTDIR/mesh.pvd (open in ParaView),\n"
+      "  contour4d reconstruct ../shared/data/sunnybrook-SC-HF-I-1 -o out/sb   # DICOM-referenced contours\n"
+      "  contour4d reconstruct seg.nii.gz --labels acdc --label lv -o out/lv  # label masks (nnU-Net, Slicer)\n"
+      "INPUT is a contour JSON file, a biv-me GPFile folder, a Sunnybrook folder or label image(s). Outputs: OUTDIR/mesh.pvd (open in ParaView),\n"
       "OUTDIR/frames/frame_NNN.{vtp,obj}, OUTDIR/report.json. Coordinates in mm, in the input's patient space.");
   app->add_option("INPUT", args->input, "contour JSON file or GPFile folder")->required();
   app->add_option("-o,--output", args->output, "output folder (replaced atomically)")->required();
   app->add_option("--frame", args->frame, "reconstruct this frame only (0-based)");
-  app->add_option("--label", args->label, "structure to reconstruct when the input holds several");
-  app->add_option("--type", args->types, "GPFile contour type(s) to use (default SAX_LV_ENDOCARDIAL)");
+  add_input_options(app, args->in);
   app->add_option("--edge", args->edge, "target edge length in mm")->capture_default_str()->check(CLI::Range(0.05, 50.0));
   app->add_option("--cap", args->cap, "end caps: rounded, flat or open")
       ->capture_default_str()

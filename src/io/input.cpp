@@ -7,6 +7,9 @@
 #include "contour4d/core/errors.h"
 #include "contour4d/io/contours_json.h"
 #include "contour4d/io/gpfile.h"
+#include "contour4d/io/images.h"
+#include "contour4d/io/sunnybrook.h"
+#include "contour4d/extract/mask_contours.h"
 
 namespace c4d {
 
@@ -15,8 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kSupported =
-    "supported inputs: a contour4d JSON file (*.json, see docs/formats.md), or a biv-me GPFile folder "
-    "(GPFile_000.txt ... plus SliceInfoFile.txt) or its parent holding a \"guidepoints\" folder";
+    "supported inputs: a contour4d JSON file (*.json, see docs/formats.md); a biv-me GPFile folder "
+    "(GPFile_000.txt ... plus SliceInfoFile.txt) or its parent holding a \"guidepoints\" folder; a Sunnybrook-style "
+    "patient folder (i-contours/, o-contours/, DICOM images); label images (.nii, .nii.gz, .nrrd, .mha, .mhd: one 4D "
+    "file, one file per frame, a folder of them or a pattern like 'patient001_frame*_gt.nii.gz')";
 
 bool has_gpfiles(const fs::path& dir) {
   std::error_code ec;
@@ -40,11 +45,31 @@ InputResult read_contours(const fs::path& input, const InputOptions& options) {
   Location where;
   where.file = input.string();
   std::error_code ec;
-  if (!fs::exists(input, ec))
+  const std::string name = input.filename().string();
+  const bool pattern = name.find_first_of("*?") != std::string::npos;
+  if (!pattern && !fs::exists(input, ec))
     throw IoError(ErrorCode::FileNotFound, where, "no such file or folder", kSupported);
 
   InputResult result;
-  if (fs::is_directory(input, ec)) {
+  const std::string space = options.space == "ras" || options.space == "RAS" ? "RAS" : "LPS";
+  if (fs::is_directory(input, ec) && is_sunnybrook_folder(input)) {
+    SunnybrookOptions so;
+    so.space = space;
+    so.contours = options.sunnybrook_contours == "epi"    ? SunnybrookContours::Epicardium
+                  : options.sunnybrook_contours == "both" ? SunnybrookContours::Both
+                                                          : SunnybrookContours::Endocardium;
+    so.stack = options.stack;
+    result = read_sunnybrook(input, so);
+  } else if (is_label_image_input(input)) {
+    MaskExtractOptions mo;
+    if (!options.label.empty()) mo.labels = {options.label};
+    mo.preset = options.label_preset;
+    mo.slice_axis = options.slice_axis;
+    mo.space = space;
+    mo.stack = options.stack;
+    result = read_label_image_contours(input, mo);
+    return result;  // the label was applied during extraction
+  } else if (fs::is_directory(input, ec)) {
     fs::path dir = input;
     if (!has_gpfiles(dir) && has_gpfiles(dir / "guidepoints")) dir = dir / "guidepoints";
     if (!has_gpfiles(dir))

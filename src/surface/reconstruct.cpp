@@ -2,19 +2,26 @@
 // First Cardiac Frame": tree-based connectivity decides which contours are joined ("we only need to
 // form surfaces between contours that have connections"), each connected pair of slices is tiled
 // (1→1 bands; 1→n and n→1 through bridges, Meyers et al. 1992), ends get rounded caps, and the
-// result is refined (isotropic remeshing, contours kept as edges) and λ|μ|ε smoothed.
+// result is refined and smoothed ("Surface Smoothing and Refinement"). Instead of tiling each band as
+// one strip and remeshing (slow), 1→1 bands are tiled directly with interpolated rows of well-shaped
+// triangles; only branching bands go through CGAL's isotropic remeshing. Instead of λ|μ|ε smoothing
+// and Bézier upsampling, one thin-plate solve (fairing.h) with the contours fixed makes the surface
+// smooth across every contour while it interpolates them exactly.
 #include "contour4d/surface/reconstruct.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <limits>
+#include <map>
 #include <set>
+#include <tuple>
 #include <string>
 
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/contour.h"
 #include "contour4d/core/errors.h"
+#include "contour4d/surface/fairing.h"
 #include "contour4d/surface/mesh_check.h"
 #include "contour4d/surface/refine.h"
 #include "contour4d/surface/resample.h"
@@ -96,6 +103,18 @@ CanonicalFrame canonical_frame(const Sequence& sub) {
 // Rounds to a 2^-30 mm grid (about 1e-9 mm): rounding noise from the input's placement vanishes.
 double snap(double x) { return std::ldexp(std::nearbyint(std::ldexp(x, 30)), -30); }
 Vec2 snap(Vec2 p) { return {snap(p.x), snap(p.y)}; }
+
+// Distance from p to the closed polygon `poly` (its edges).
+double polygon_distance(Vec2 p, const std::vector<Vec2>& poly) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Vec2 a = poly[k], ab = poly[(k + 1) % poly.size()] - a;
+    const double l2 = dot(ab, ab);
+    const double t = l2 > 0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
+    best = std::min(best, norm(p - (a + t * ab)));
+  }
+  return best;
+}
 
 int find_root(std::vector<int>& parent, int x) {
   while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -248,6 +267,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   ResampleOptions ropt;
   ropt.edge = opt.edge;
   ropt.corner_angle_deg = opt.corner_angle_deg;
+  ropt.tolerance = opt.contour_tolerance;
   for (std::size_t s = 0; s < ff.slices.size(); ++s) {
     SliceInfo& si = slices[s];
     si.slice = &ff.slices[s];
@@ -317,6 +337,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   }
 
   // Walls between connected contours.
+  std::vector<Triangle> to_remesh;  // band triangles left for remeshing
   for (std::size_t s = 0; s + 1 < slices.size(); ++s) {
     if (pair_links[s].empty()) continue;
     std::vector<int> parent(nodes.size());
@@ -343,9 +364,106 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
                                         : merge_with_bridges(lower, nodes, slices[s].plane, rise, opt.edge, b);
       const auto uc = upper.size() == 1 ? nodes[upper[0]].chain
                                         : merge_with_bridges(upper, nodes, slices[s + 1].plane, -rise, opt.edge, b);
-      const auto tris = tile_chains(lc, uc, b.positions);
-      b.triangles.insert(b.triangles.end(), tris.begin(), tris.end());
+      const int intervals = std::max(1, static_cast<int>(std::lround(gap / (opt.edge * std::sqrt(3.0) / 2.0))));
+      if (opt.rows && lower.size() == 1 && upper.size() == 1 && intervals > 1) {
+        // Rows between the two contours, tiled pairwise: well-shaped triangles without remeshing.
+        const auto rows = interpolate_rows(lc, uc, b.positions, intervals);
+        std::vector<std::uint32_t> prev = lc;
+        for (std::size_t row = 0; row <= rows.size(); ++row) {
+          std::vector<std::uint32_t> next;
+          if (row < rows.size())
+            for (const Vec3& p : rows[row]) next.push_back(b.add(p));
+          else
+            next = uc;
+          const auto tris = tile_chains(prev, next, b.positions);
+          b.triangles.insert(b.triangles.end(), tris.begin(), tris.end());
+          prev = std::move(next);
+        }
+        continue;
+      }
+      // 1→n / n→1: each vertex of the single contour may only be joined to the contour of the other
+      // side it is nearest to (in the plane) or to a bridge, so the band cannot fold across a bridge.
+      std::vector<int> lg, ug;
+      if (!both && (lower.size() > 1 || upper.size() > 1)) {
+        const std::vector<int>& many = lower.size() > 1 ? lower : upper;
+        const int single = lower.size() > 1 ? upper[0] : lower[0];
+        const auto& merged = lower.size() > 1 ? lc : uc;
+        std::map<std::uint32_t, int> member;
+        for (std::size_t k = 0; k < many.size(); ++k)
+          for (std::uint32_t v : nodes[many[k]].chain) member[v] = static_cast<int>(k);
+        std::vector<int> mg, sg;
+        for (std::uint32_t v : merged) {
+          const auto it = member.find(v);
+          mg.push_back(it == member.end() ? -1 : it->second);
+        }
+        for (const Vec2& p : nodes[single].poly) {
+          double best = std::numeric_limits<double>::infinity();
+          int g = -1;
+          for (std::size_t k = 0; k < many.size(); ++k) {
+            const double d = polygon_distance(p, nodes[many[k]].poly);
+            if (d < best) {
+              best = d;
+              g = static_cast<int>(k);
+            }
+          }
+          sg.push_back(g);
+        }
+        lg = lower.size() > 1 ? mg : sg;
+        ug = lower.size() > 1 ? sg : mg;
+      }
+      const auto tris = tile_chains(lc, uc, b.positions, lg, ug);
+      auto& dest = opt.remesh ? to_remesh : b.triangles;
+      dest.insert(dest.end(), tris.begin(), tris.end());
     }
+  }
+
+  // Bands without rows (branchings) are remeshed on their own; their borders are contours, which
+  // stay fixed and unsplit, so the caps and the neighbouring bands still meet them edge to edge.
+  if (!to_remesh.empty()) {
+    TriangleMesh part;
+    std::map<std::uint32_t, std::uint32_t> local;
+    std::vector<std::uint32_t> global;
+    for (const Triangle& t : to_remesh) {
+      Triangle lt{};
+      for (int k = 0; k < 3; ++k) {
+        const auto [it, fresh] = local.emplace(t[k], static_cast<std::uint32_t>(global.size()));
+        if (fresh) {
+          global.push_back(t[k]);
+          part.positions.push_back(b.positions[t[k]]);
+        }
+        lt[k] = it->second;
+      }
+      part.triangles.push_back(lt);
+    }
+    std::vector<char> part_fixed(global.size(), 0);
+    std::map<std::tuple<double, double, double>, std::uint32_t> fixed_at;
+    for (std::size_t k = 0; k < global.size(); ++k)
+      if (global[k] < contour_vertices) {
+        part_fixed[k] = 1;
+        fixed_at[{part.positions[k].x, part.positions[k].y, part.positions[k].z}] = global[k];
+      }
+    std::vector<std::array<std::uint32_t, 2>> constrained;
+    for (const Node& n : nodes)
+      for (std::size_t k = 0; k < n.chain.size(); ++k) {
+        const auto a = local.find(n.chain[k]), c = local.find(n.chain[(k + 1) % n.chain.size()]);
+        if (a != local.end() && c != local.end())
+          constrained.push_back({std::min(a->second, c->second), std::max(a->second, c->second)});
+      }
+    const MeshCheck pc = check_mesh(part, false);
+    if (pc.nonmanifold_edges == 0 && pc.nonmanifold_vertices == 0 && pc.misoriented_edges == 0) {
+      RemeshOptions mo;
+      mo.edge = opt.edge;
+      mo.iterations = opt.remesh_iterations;
+      mo.split_constraints = false;
+      remesh_isotropic(part, constrained, part_fixed, mo);
+    }
+    std::vector<std::uint32_t> to_global(part.positions.size());
+    for (std::size_t k = 0; k < part.positions.size(); ++k) {
+      const Vec3 p = part.positions[k];
+      const auto it = fixed_at.find({p.x, p.y, p.z});
+      to_global[k] = it != fixed_at.end() ? it->second : b.add(p);
+    }
+    for (const Triangle& t : part.triangles) b.triangles.push_back({to_global[t[0]], to_global[t[1]], to_global[t[2]]});
   }
 
   // Caps on contours without a partner above (top) or below (bottom).
@@ -357,6 +475,9 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     return std::numeric_limits<double>::infinity();  // single slice: the dome is limited by the region's width
   };
   double lowest = 0.0, highest = slices.back().plane.origin.z;
+  std::vector<char> fixed(b.positions.size(), 0);
+  std::fill(fixed.begin(), fixed.begin() + contour_vertices, 1);
+  std::vector<char> keep_shape;
   for (std::size_t s = 0; s < slices.size(); ++s)
     for (bool top : {false, true}) {
       std::vector<char> consumed(nodes.size(), 0);
@@ -389,8 +510,13 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         std::vector<std::uint32_t> id;
         for (int g : group) id.insert(id.end(), nodes[g].chain.begin(), nodes[g].chain.end());
         const double dir = top ? 1.0 : -1.0;
-        for (std::size_t k = id.size(); k < cap.points.size(); ++k)
+        for (std::size_t k = id.size(); k < cap.points.size(); ++k) {
           id.push_back(b.add(from_plane(slices[s].plane, cap.points[k], dir * cap.height[k])));
+          // Flat lids stay in their plane; domes keep their shape up to a smooth join with the wall.
+          fixed.push_back(opt.caps == CapStyle::Flat ? 1 : 0);
+          keep_shape.resize(b.positions.size(), 0);
+          keep_shape.back() = opt.caps == CapStyle::Rounded ? 1 : 0;
+        }
         const bool flip = top == lone_hole;
         for (const Triangle& t : cap.triangles)
           b.triangles.push_back(flip ? Triangle{id[t[0]], id[t[2]], id[t[1]]} : Triangle{id[t[0]], id[t[1]], id[t[2]]});
@@ -399,35 +525,30 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     }
 
   TriangleMesh mesh{std::move(b.positions), std::move(b.triangles)};
-  std::vector<std::array<std::uint32_t, 2>> constrained;
-  for (const Node& n : nodes)
-    for (std::size_t k = 0; k < n.chain.size(); ++k) {
-      const std::uint32_t a = n.chain[k], c = n.chain[(k + 1) % n.chain.size()];
-      constrained.push_back({std::min(a, c), std::max(a, c)});
-    }
-  std::vector<char> fixed(mesh.positions.size(), 0);
-  std::fill(fixed.begin(), fixed.begin() + contour_vertices, 1);
+  fixed.resize(mesh.positions.size(), 0);
+  keep_shape.resize(mesh.positions.size(), 0);
 
   const MeshCheck coarse = check_mesh(mesh, false);
   const bool manifold = coarse.nonmanifold_edges == 0 && coarse.nonmanifold_vertices == 0 && coarse.misoriented_edges == 0;
   if (!manifold)
     rep.warnings.push_back("the tiled surface is not a clean 2-manifold (" + std::to_string(coarse.nonmanifold_edges) +
                            " non-manifold edges, " + std::to_string(coarse.nonmanifold_vertices) +
-                           " non-manifold vertices); remeshing and smoothing skipped");
-  if (manifold && opt.remesh) {
-    RemeshOptions mo;
-    mo.edge = opt.edge;
-    mo.iterations = opt.remesh_iterations;
-    remesh_isotropic(mesh, constrained, fixed, mo);
+                           " non-manifold vertices); fairing and smoothing skipped");
+  bool moved = false;
+  if (manifold && opt.fairing) {
+    if (fair_thin_plate(mesh, fixed, keep_shape)) moved = true;
+    else rep.warnings.push_back("fairing failed (singular system); the surface is left unsmoothed");
   }
   if (manifold && opt.smoothing_iterations > 0) {
     SmoothingOptions so;
     so.iterations = opt.smoothing_iterations;
     so.epsilon = opt.smoothing_epsilon;
     smooth_lambda_mu_epsilon(mesh, fixed, so);
-    // Smoothing must not push the tips past the caps' height (no overshoot beyond half a spacing).
-    for (Vec3& p : mesh.positions) p.z = std::clamp(p.z, lowest, highest);
+    moved = true;
   }
+  // No overshoot beyond the caps' height (at most half a spacing past the end contours).
+  if (moved)
+    for (Vec3& p : mesh.positions) p.z = std::clamp(p.z, lowest, highest);
 
   // Drop unused vertices (contours left without walls or caps when caps are open).
   std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);

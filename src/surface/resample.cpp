@@ -109,14 +109,40 @@ std::vector<Vec2> resample_closed(const std::vector<Vec2>& polygon, const Resamp
     const double nu = norm(u), nw = norm(w);
     if (nu > 0 && nw > 0 && dot(u, w) / (nu * nw) < cos_limit) kept.push_back(i);
   }
+  // Point density (points per mm) at each input vertex: 1/edge on straight parts, more where the
+  // contour bends so that the chord deviation e²κ/8 stays within the tolerance.
+  std::vector<double> density(n, 1.0 / options.edge);
+  if (options.tolerance > 0.0)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 a = point_at(p, cum, cum[i] - scale), b = p[i], c = point_at(p, cum, cum[i] + scale);
+      const Vec2 u = b - a, w = c - b;
+      const double nu = norm(u), nw = norm(w);
+      if (!(nu > 0 && nw > 0)) continue;
+      const double turn = std::atan2(std::abs(cross(u, w)), dot(u, w));
+      const double kappa = turn / (0.5 * (nu + nw));
+      if (kappa <= 0) continue;
+      const double spacing = std::clamp(std::sqrt(8.0 * options.tolerance / kappa), 0.5 * options.edge, options.edge);
+      density[i] = 1.0 / spacing;
+    }
+  // Integrated density, trapezoids over the input edges.
+  std::vector<double> phi(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    phi[i + 1] = phi[i] + 0.5 * (density[i] + density[(i + 1) % n]) * (cum[i + 1] - cum[i]);
+  // Arc length at integrated density f (within [phi[i0], phi[i1]]), linear within each input edge.
+  auto arc_at = [&](double f) {
+    const std::size_t i = std::min<std::size_t>(
+        n - 1, static_cast<std::size_t>(std::upper_bound(phi.begin(), phi.end(), f) - phi.begin()) - 1);
+    const double span = phi[i + 1] - phi[i];
+    const double t = span > 0 ? std::clamp((f - phi[i]) / span, 0.0, 1.0) : 0.0;
+    return cum[i] + t * (cum[i + 1] - cum[i]);
+  };
   std::vector<Vec2> out;
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    const double s0 = cum[kept[k]];
-    const double s1 = k + 1 < kept.size() ? cum[kept[k + 1]] : total;
-    const double len = s1 - s0;
-    const int pieces = std::max(1, static_cast<int>(std::ceil(len / options.edge - 1e-9)));
+    const double f0 = phi[kept[k]];
+    const double f1 = k + 1 < kept.size() ? phi[kept[k + 1]] : phi[n];
+    const int pieces = std::max(1, static_cast<int>(std::ceil(f1 - f0 - 1e-9)));
     out.push_back(p[kept[k]]);
-    for (int j = 1; j < pieces; ++j) out.push_back(point_at(p, cum, s0 + len * j / pieces));
+    for (int j = 1; j < pieces; ++j) out.push_back(point_at(p, cum, arc_at(f0 + (f1 - f0) * j / pieces)));
   }
   return out;
 }

@@ -4,6 +4,7 @@ target_sources(contour4d PRIVATE
   surface/tiling.cpp
   surface/capping.cpp
   surface/smoothing.cpp
+  surface/fairing.cpp
   surface/refine.cpp
   surface/mesh_check.cpp
   surface/reconstruct.cpp)

@@ -6,28 +6,51 @@
 // the other slice (Meyers, Skinner & Sloan 1992), which yields the saddle of the paper's ridge.
 #include "contour4d/surface/tiling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace c4d {
 
-std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
-                                  const std::vector<Vec3>& positions) {
-  const std::size_t n = lower.size(), m = upper.size();
-  std::vector<Triangle> out;
-  if (n == 0 || m == 0) return out;
+namespace {
+
+// Optimal band path (Fuchs, Kedem & Uselton): the states (i, j) from (0, 0) to (n, m), lower index i
+// modulo n, upper index j0 + j modulo m; consecutive states differ by one step on one chain.
+// Cost of a spanning edge: its squared length, which penalises the long edges of fans harder than
+// the plain length of Fuchs et al. (fans across a bridged chain otherwise cut through the band).
+double span_cost(Vec3 a, Vec3 b) {
+  const Vec3 d = a - b;
+  return dot(d, d);
+}
+
+struct BandPath {
   std::size_t j0 = 0;
+  std::vector<std::pair<std::size_t, std::size_t>> states;
+};
+
+BandPath band_path(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                   const std::vector<Vec3>& positions, const std::vector<int>& lower_group = {},
+                   const std::vector<int>& upper_group = {}) {
+  BandPath out;
+  const std::size_t n = lower.size(), m = upper.size();
+  const bool grouped = lower_group.size() == n && upper_group.size() == m;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t j = 0; j < m; ++j) {
+    if (grouped && lower_group[0] >= 0 && upper_group[j] >= 0 && lower_group[0] != upper_group[j]) continue;
     const double d = distance(positions[lower[0]], positions[upper[j]]);
     if (d < best) {
       best = d;
-      j0 = j;
+      out.j0 = j;
     }
   }
-  auto L = [&](std::size_t i) { return lower[i % n]; };
-  auto U = [&](std::size_t j) { return upper[(j0 + j) % m]; };
-  auto len = [&](std::uint32_t a, std::uint32_t b) { return distance(positions[a], positions[b]); };
+  const std::size_t j0 = out.j0;
+  auto L = [&](std::size_t i) { return positions[lower[i % n]]; };
+  auto U = [&](std::size_t j) { return positions[upper[(j0 + j) % m]]; };
+  auto allowed = [&](std::size_t i, std::size_t j) {
+    if (!grouped) return true;
+    const int a = lower_group[i % n], b = upper_group[(j0 + j) % m];
+    return a < 0 || b < 0 || a == b;
+  };
   const std::size_t W = m + 1;
   std::vector<double> cost((n + 1) * W, std::numeric_limits<double>::infinity());
   std::vector<char> from((n + 1) * W, 0);  // 1: came by advancing lower, 2: by advancing upper
@@ -35,33 +58,98 @@ std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const
   for (std::size_t i = 0; i <= n; ++i)
     for (std::size_t j = 0; j <= m; ++j) {
       const double c = cost[i * W + j];
-      if (i < n) {
-        const double nc = c + len(L(i + 1), U(j));
+      if (!(c < std::numeric_limits<double>::infinity())) continue;
+      if (i < n && allowed(i + 1, j)) {
+        const double nc = c + span_cost(L(i + 1), U(j));
         if (nc < cost[(i + 1) * W + j]) {
           cost[(i + 1) * W + j] = nc;
           from[(i + 1) * W + j] = 1;
         }
       }
-      if (j < m) {
-        const double nc = c + len(L(i), U(j + 1));
+      if (j < m && allowed(i, j + 1)) {
+        const double nc = c + span_cost(L(i), U(j + 1));
         if (nc < cost[i * W + j + 1]) {
           cost[i * W + j + 1] = nc;
           from[i * W + j + 1] = 2;
         }
       }
     }
+  if (!(cost[n * W + m] < std::numeric_limits<double>::infinity())) {
+    out.states.clear();
+    return out;
+  }
   std::size_t i = n, j = m;
-  out.reserve(n + m);
+  out.states.push_back({i, j});
   while (i > 0 || j > 0) {
-    if (from[i * W + j] == 1) {
-      --i;
-      out.push_back({L(i), L(i + 1), U(j)});
-    } else {
-      --j;
-      out.push_back({L(i), U(j + 1), U(j)});
-    }
+    if (from[i * W + j] == 1) --i;
+    else --j;
+    out.states.push_back({i, j});
+  }
+  std::reverse(out.states.begin(), out.states.end());
+  return out;
+}
+
+}  // namespace
+
+std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                                  const std::vector<Vec3>& positions) {
+  return tile_chains(lower, upper, positions, {}, {});
+}
+
+std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                                  const std::vector<Vec3>& positions, const std::vector<int>& lower_group,
+                                  const std::vector<int>& upper_group) {
+  const std::size_t n = lower.size(), m = upper.size();
+  std::vector<Triangle> out;
+  if (n == 0 || m == 0) return out;
+  BandPath path = band_path(lower, upper, positions, lower_group, upper_group);
+  if (path.states.empty()) path = band_path(lower, upper, positions);  // no tiling respects the groups
+  auto L = [&](std::size_t i) { return lower[i % n]; };
+  auto U = [&](std::size_t j) { return upper[(path.j0 + j) % m]; };
+  out.reserve(n + m);
+  for (std::size_t k = path.states.size() - 1; k > 0; --k) {
+    const auto [i1, j1] = path.states[k];
+    const auto [i, j] = path.states[k - 1];
+    if (i1 != i) out.push_back({L(i), L(i1), U(j)});
+    else out.push_back({L(i), U(j1), U(j)});
   }
   return out;
+}
+
+std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>& lower,
+                                                const std::vector<std::uint32_t>& upper,
+                                                const std::vector<Vec3>& positions, int intervals) {
+  std::vector<std::vector<Vec3>> rows;
+  const std::size_t n = lower.size(), m = upper.size();
+  if (n < 3 || m < 3 || intervals < 2) return rows;
+  const BandPath path = band_path(lower, upper, positions);
+  const std::size_t spans = path.states.size() - 1;  // n + m spanning edges, the last equals the first
+  for (int r = 1; r < intervals; ++r) {
+    const double t = static_cast<double>(r) / intervals;
+    std::vector<Vec3> q(spans);
+    std::vector<double> cum(spans + 1, 0.0);
+    for (std::size_t k = 0; k < spans; ++k) {
+      const auto [i, j] = path.states[k];
+      q[k] = (1.0 - t) * positions[lower[i % n]] + t * positions[upper[(path.j0 + j) % m]];
+      if (k > 0) cum[k] = cum[k - 1] + distance(q[k - 1], q[k]);
+    }
+    cum[spans] = cum[spans - 1] + distance(q[spans - 1], q[0]);
+    const double total = cum[spans];
+    const std::size_t count = std::max<std::size_t>(
+        3, static_cast<std::size_t>(std::lround((1.0 - t) * static_cast<double>(n) + t * static_cast<double>(m))));
+    std::vector<Vec3> row;
+    row.reserve(count);
+    std::size_t seg = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+      const double s = total * static_cast<double>(c) / static_cast<double>(count);
+      while (seg + 1 < spans && cum[seg + 1] <= s) ++seg;
+      const double len = cum[seg + 1] - cum[seg];
+      const double f = len > 0 ? (s - cum[seg]) / len : 0.0;
+      row.push_back(q[seg] + f * (q[(seg + 1) % spans] - q[seg]));
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 std::vector<std::uint32_t> bridge_chains(const std::vector<std::uint32_t>& a, std::size_t x_at,

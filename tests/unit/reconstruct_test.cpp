@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 
 #include "contour4d/core/errors.h"
@@ -339,4 +340,122 @@ TEST(Reconstruct, BadInputThrows) {
   EXPECT_THROW(c4d::reconstruct_frame(seq, 0, o), c4d::InvalidInput);
 }
 
+}  // namespace
+
+// ---- Accuracy against analytic phantoms (issue 3 targets) ----
+#include "contour4d/phantoms/phantom.h"
+
+namespace {
+
+struct Accuracy {
+  double mean = 0, max = 0, volume_error = 0;
+  std::size_t samples = 0;
+  Angles angles;
+  double conformity_mean = 0;
+};
+
+// Mean/max |analytic distance| over vertices and triangle centroids inside the slab, volume error
+// against the true volume, angle statistics, conformity (input vertices to the nearest mesh edge).
+Accuracy accuracy(const c4d::Phantom& ph, const c4d::TriangleMesh& m, bool conformity) {
+  Accuracy a;
+  const Vec3 n = ph.contours.normal;
+  auto in_slab = [&](Vec3 p) {
+    const double h = c4d::dot(n, p);
+    return h >= ph.slab_min - 1e-9 && h <= ph.slab_max + 1e-9;
+  };
+  double sum = 0;
+  auto take = [&](Vec3 p) {
+    if (!in_slab(p)) return;
+    const double d = std::abs(c4d::analytic_distance(ph, 0, p));
+    sum += d;
+    a.max = std::max(a.max, d);
+    ++a.samples;
+  };
+  for (const Vec3& p : m.positions) take(p);
+  for (const auto& t : m.triangles) take((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0);
+  a.mean = sum / std::max<std::size_t>(1, a.samples);
+  a.volume_error = (c4d::signed_volume(m) - ph.true_volume_mm3[0]) / ph.true_volume_mm3[0];
+  a.angles = angles(m);
+  if (conformity) {
+    // Edges near each input vertex only (bucketed by slice height) keep this fast.
+    double csum = 0;
+    std::size_t cn = 0;
+    for (const auto& s : ph.contours.frames[0].slices)
+      for (const auto& c : s.contours)
+        for (const Vec3& p : c.points) {
+          double best = 1e300;
+          for (const auto& t : m.triangles)
+            for (int k = 0; k < 3; ++k) {
+              const Vec3 a0 = m.positions[t[k]], a1 = m.positions[t[(k + 1) % 3]];
+              if (std::abs(c4d::dot(n, a0) - s.offset) > 1e-6 || std::abs(c4d::dot(n, a1) - s.offset) > 1e-6) continue;
+              best = std::min(best, point_segment(p, a0, a1));
+            }
+          csum += best;
+          ++cn;
+        }
+    a.conformity_mean = csum / std::max<std::size_t>(1, cn);
+  }
+  return a;
+}
+
+TEST(ReconstructPhantoms, AccuracyVolumeAndQuality) {
+  for (const std::string name : {"ellipsoid", "left-heart-ed", "left-heart-es", "torus", "bifurcation"})
+    for (bool oblique : {false, true}) {
+      c4d::PhantomOptions po;
+      po.oblique = oblique;
+      const c4d::Phantom ph = c4d::make_phantom(name, po);
+      c4d::SurfaceReport rep;
+      const auto m = c4d::reconstruct_frame(ph.contours, 0, {}, &rep);
+      const Accuracy a = accuracy(ph, m, !oblique);
+      std::printf("%-14s %-7s: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 %.1f %%, "
+                  "<25: %.3f %%, min %.1f deg, conformity mean %.4f mm%s\n",
+                  name.c_str(), oblique ? "oblique" : "", m.positions.size(), a.mean, a.max, 100 * a.volume_error,
+                  100 * a.angles.share_40_80, 100 * a.angles.share_below_25, a.angles.min_deg, a.conformity_mean,
+                  rep.warnings.empty() ? "" : (" [" + rep.warnings[0] + "]").c_str());
+      SCOPED_TRACE(name + (oblique ? " oblique" : ""));
+      EXPECT_TRUE(rep.closed);
+      EXPECT_FALSE(rep.self_intersects);
+      EXPECT_GT(rep.volume, 0.0);
+    }
+}
+
+}  // namespace
+
+namespace {
+TEST(ReconstructDebug, Dump) {
+  const char* name = std::getenv("C4D_DEBUG_PHANTOM");
+  if (!name) GTEST_SKIP();
+  const c4d::Phantom ph = c4d::make_phantom(name, {});
+  c4d::SurfaceOptions o;
+  o.fairing = std::getenv("C4D_NOFAIR") == nullptr;
+  o.remesh = std::getenv("C4D_NOREMESH") == nullptr;
+  c4d::SurfaceReport rep;
+  const auto m = c4d::reconstruct_frame(ph.contours, 0, o, &rep);
+  FILE* f = std::fopen("/tmp/c4d_debug.obj", "w");
+  for (const Vec3& p : m.positions) std::fprintf(f, "v %.6f %.6f %.6f\n", p.x, p.y, p.z);
+  for (const auto& t : m.triangles) std::fprintf(f, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  std::fclose(f);
+  for (const auto& w : rep.warnings) std::printf("warning: %s\n", w.c_str());
+  int shown_pairs = 0;
+  for (const auto& pr : c4d::self_intersecting_pairs(m)) {
+    if (shown_pairs++ > 12) break;
+    for (std::uint32_t t : pr) {
+      const auto& tr = m.triangles[t];
+      std::printf("tri %u:", t);
+      for (auto v : tr) std::printf(" (%.3f %.3f %.3f)", m.positions[v].x, m.positions[v].y, m.positions[v].z);
+      std::printf(" |");
+    }
+    std::printf("\n");
+  }
+  std::printf("slab %.2f..%.2f normal %.2f %.2f %.2f\n", ph.slab_min, ph.slab_max, ph.contours.normal.x, ph.contours.normal.y, ph.contours.normal.z);
+  for (const auto& c : rep.connections) std::printf("link %d.%d - %d.%d sim %.2f\n", c.slice_a, c.contour_a, c.slice_b, c.contour_b, c.similarity);
+  std::printf("branchings %d caps %d contours %d\n", rep.branchings, rep.caps, rep.contours);
+  int shown = 0;
+  for (const Vec3& p : m.positions) {
+    const double d = c4d::analytic_distance(ph, 0, p);
+    const double h = c4d::dot(ph.contours.normal, p);
+    if (h < ph.slab_min || h > ph.slab_max) continue;
+    if (std::abs(d) > 0.3 && shown++ < 30) std::printf("far %.3f at %.3f %.3f %.3f\n", d, p.x, p.y, p.z);
+  }
+}
 }  // namespace

@@ -13,7 +13,12 @@ namespace c4d {
 //! How to read an input.
 struct InputOptions {
   std::vector<std::string> contour_types;  //!< GPFile contour types to keep; empty = SAX_LV_ENDOCARDIAL
-  std::string label;                       //!< keep only this label (empty: all labels)
+  std::string label;                       //!< keep only this label (empty: all labels); for label images a
+                                           //!< number ("3") or a preset name ("lv")
+  std::string label_preset;                //!< label images: "acdc", "mnms" or "" (labels named by number)
+  int slice_axis = -1;                     //!< label images: voxel axis of the slices; -1: largest spacing
+  std::string space = "LPS";               //!< output coordinates of DICOM-derived inputs: "LPS" or "RAS"
+  std::string sunnybrook_contours = "endo";  //!< Sunnybrook folders: "endo", "epi" or "both"
   StackOptions stack;                      //!< validation tolerances
 };
 
@@ -24,7 +29,9 @@ struct InputResult {
   std::vector<std::string> notes;   //!< human-readable lines for the summary
 };
 
-//! Reads a .json contour file or a GPFile folder (a folder with GPFile_*.txt, or its parent).
+//! Reads a .json contour file, a GPFile folder (a folder with GPFile_*.txt, or its parent), a
+//! Sunnybrook-style patient folder (i-contours/, o-contours/, DICOM images), or label images
+//! (NIfTI, NRRD, MetaImage: one 4D file, one file per frame, a folder or a name pattern).
 //! \throw IoError / InvalidInput with context.
 InputResult read_contours(const std::filesystem::path& input, const InputOptions& options = {});
 

@@ -3,7 +3,10 @@
 //! \brief Topology checks of a triangle mesh: closed, 2-manifold, consistently and outward oriented,
 //! genus, components, self-intersections.
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "contour4d/core/mesh.h"
 
@@ -27,5 +30,9 @@ struct MeshCheck {
 
 //! Checks `mesh`; self-intersections (CGAL PMP) only when `self_intersections` is true.
 MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections = false);
+
+//! Pairs of triangle indices (smaller first, sorted) that intersect (CGAL PMP); empty when none or
+//! when the triangles do not form a 2-manifold surface.
+std::vector<std::array<std::uint32_t, 2>> self_intersecting_pairs(const TriangleMesh& mesh);
 
 }  // namespace c4d

@@ -2,7 +2,7 @@
 //! \file reconstruct.h
 //! \brief The surface of one frame from its contours (Lim et al. 2014, "Constructing a 3D model of
 //! the First Cardiac Frame"): canonical resampled contours → tree-based connectivity → tiling
-//! between connected contours (with branching bridges) → caps → remeshing and λ|μ|ε smoothing.
+//! between connected contours (rows; branching bridges) → caps → thin-plate fairing with the contours fixed.
 
 #include <string>
 #include <vector>
@@ -17,14 +17,17 @@ namespace c4d {
 //! Options of the one-frame surface.
 struct SurfaceOptions {
   std::string label;             //!< structure to build; empty: the frame must hold a single label
-  double edge = 1.25;            //!< target edge length (mm): contour resampling and remeshing
+  double edge = 1.25;            //!< target edge length (mm): contour resampling, rows, caps and remeshing
   double corner_angle_deg = 30;  //!< contour vertices turning more than this are kept exactly
+  double contour_tolerance = 0.01;  //!< resampled contours stay about this close to the input (mm): finer spacing on bends (0: spacing `edge`)
   CapStyle caps = CapStyle::Rounded;  //!< how ends are closed
   double cap_height = 0.5;       //!< Rounded cap height as a fraction of the adjacent slice spacing (≤ 0.5)
   double threshold = 0.3;        //!< similarity threshold of the connectivity tree (paper: 30 %)
-  bool remesh = true;            //!< isotropic remeshing to `edge` (contours kept as mesh edges)
+  bool rows = true;              //!< 1→1 bands get interpolated rows about edge·√3/2 apart (well-shaped triangles directly)
+  bool remesh = true;            //!< isotropic remeshing (CGAL) of the bands without rows (branchings; all bands when rows = false)
   int remesh_iterations = 5;     //!< remeshing rounds
-  int smoothing_iterations = 5;  //!< λ|μ|ε pass pairs after remeshing (0: none); contour vertices fixed
+  bool fairing = true;           //!< thin-plate fairing with the contours fixed: smooth across contours (fairing.h)
+  int smoothing_iterations = 0;  //!< λ|μ|ε pass pairs after fairing (0: none); contour vertices fixed
   double smoothing_epsilon = 0.2;  //!< ε bound of the smoothing (mm)
   bool check_self_intersections = true;  //!< run CGAL's self-intersection test for the report
 };

@@ -22,6 +22,22 @@ namespace c4d {
 std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
                                   const std::vector<Vec3>& positions);
 
+//! tile_chains where a spanning edge may only join entries of the same group (group ≥ 0) or an entry
+//! without group (−1): for branching, the vertices of the single contour are grouped by their nearest
+//! contour on the other side, bridge vertices have no group. Falls back to the plain tiling when no
+//! tiling respects the groups. Group vectors of the wrong size are ignored.
+std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                                  const std::vector<Vec3>& positions, const std::vector<int>& lower_group,
+                                  const std::vector<int>& upper_group);
+
+//! Intermediate rows of the band between `lower` and `upper` (as in tile_chains) for a band cut into
+//! `intervals` layers: row r (1 ≤ r < intervals) lies at t = r / intervals on the spanning edges of
+//! the optimal tiling, resampled at equal arc length into round((1−t)·n + t·m) points, starting on
+//! the spanning edge from lower[0]; it runs the same way as the chains. Empty when intervals < 2.
+std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>& lower,
+                                                const std::vector<std::uint32_t>& upper,
+                                                const std::vector<Vec3>& positions, int intervals);
+
 //! Merges closed chain `b` into closed chain `a` through a bridge between their closest vertices
 //! (positions compared as given). `bridge` are the vertex ids of the bridge interior from a's side
 //! to b's side (may be empty); they are walked there and back. Returns the merged chain:

@@ -1,0 +1,29 @@
+#pragma once
+//! \file input_options.h
+//! \brief The input flags shared by every subcommand that reads contours.
+
+#include <CLI/CLI.hpp>
+
+#include "contour4d/io/input.h"
+
+namespace c4d::cli {
+
+//! Adds --type, --label, --labels, --slice-axis, --space and --contours, filling `o`.
+inline void add_input_options(CLI::App* app, InputOptions& o) {
+  app->add_option("--type", o.contour_types,
+                  "GPFile contour types to keep (repeatable; default SAX_LV_ENDOCARDIAL), e.g. SAX_LV_EPICARDIAL");
+  app->add_option("--label", o.label,
+                  "structure to keep: a contour label (lv-endo), or for label images a number (3) or a preset name (lv)");
+  app->add_option("--labels", o.label_preset, "label-image preset naming the labels: acdc (RV=1, MYO=2, LV=3) or mnms (LV=1, MYO=2, RV=3)")
+      ->check(CLI::IsMember({"acdc", "mnms"}));
+  app->add_option("--slice-axis", o.slice_axis, "label images: voxel axis 0, 1 or 2 along which slices are stacked "
+                                                "(default: the axis with the largest spacing)")
+      ->check(CLI::Range(0, 2));
+  app->add_option("--space", o.space, "output space of image/DICOM inputs: lps (DICOM patient space) or ras")
+      ->capture_default_str()
+      ->transform(CLI::IsMember({"lps", "ras", "LPS", "RAS"}));
+  app->add_option("--contours", o.sunnybrook_contours, "Sunnybrook folders: endo (default), epi or both")
+      ->check(CLI::IsMember({"endo", "epi", "both"}));
+}
+
+}  // namespace c4d::cli

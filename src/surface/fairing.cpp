@@ -1,0 +1,117 @@
+// Fairing: Lim et al. 2014, "Surface Smoothing and Refinement" (eq. 7) smooths the tiled surface
+// with λ|μ|ε passes and upsamples it with quartic Bézier patches. We reach the same goal (a smooth
+// surface through the contours) with one discrete thin-plate solve (Kobbelt et al. 1998, "Interactive
+// multi-resolution modeling on arbitrary meshes"; Botsch & Sorkine 2008, "On linear variational
+// surface deformation methods"): the free vertices minimise the squared umbrella Laplacian, the
+// contour vertices are fixed, and because the Laplacian of each contour vertex enters the energy the
+// two sides of a contour are coupled, giving a surface that is smooth across it.
+#include "contour4d/surface/fairing.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cstdint>
+
+namespace c4d {
+
+bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const std::vector<char>& keep_shape,
+                     const FairingOptions& options) {
+  const std::size_t nv = mesh.positions.size();
+  if (nv == 0) return true;
+  // One-ring neighbours (sorted, unique) and boundary flags (edges used by one triangle).
+  std::vector<std::vector<std::uint32_t>> ring(nv);
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  edges.reserve(3 * mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      ring[a].push_back(b);
+      ring[b].push_back(a);
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<char> boundary(nv, 0);
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) boundary[edges[i][0]] = boundary[edges[i][1]] = 1;
+    i = j;
+  }
+  for (auto& r : ring) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+  // Unknown index of each free vertex.
+  std::vector<int> unknown(nv, -1);
+  int nf = 0;
+  for (std::size_t v = 0; v < nv; ++v)
+    if ((fixed.empty() || !fixed[v]) && !ring[v].empty()) unknown[v] = nf++;
+  if (nf == 0) return true;
+
+  // Rows of the energy: for each used, non-boundary vertex v, sqrt(w_v) (L(x)_v − b_v), split into
+  // the part on the unknowns (matrix Lf) and a constant (fixed neighbours and b_v).
+  using Sparse = Eigen::SparseMatrix<double>;
+  std::vector<Eigen::Triplet<double>> trip;
+  std::vector<std::array<double, 3>> constant;
+  trip.reserve(8 * nv);
+  constant.reserve(nv);
+  int rows = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (ring[v].empty() || boundary[v]) continue;
+    const bool shape = !keep_shape.empty() && keep_shape[v];
+    const double w = shape ? std::sqrt(std::max(0.0, options.shape_weight)) : 1.0;
+    const double inv = 1.0 / static_cast<double>(ring[v].size());
+    std::array<double, 3> c{0, 0, 0};
+    bool touches = false;
+    auto add = [&](std::uint32_t u, double coef) {
+      if (unknown[u] >= 0) {
+        trip.emplace_back(rows, unknown[u], w * coef);
+        touches = true;
+      } else {
+        const Vec3 p = mesh.positions[u];
+        c[0] += w * coef * p.x;
+        c[1] += w * coef * p.y;
+        c[2] += w * coef * p.z;
+      }
+    };
+    const std::size_t mark = trip.size();
+    for (std::uint32_t u : ring[v]) add(u, inv);
+    add(static_cast<std::uint32_t>(v), -1.0);
+    if (!touches) {
+      trip.resize(mark);
+      continue;
+    }
+    if (shape) {
+      // b_v: the Laplacian of the input positions.
+      Vec3 lap = -1.0 * mesh.positions[v];
+      for (std::uint32_t u : ring[v]) lap += inv * mesh.positions[u];
+      c[0] -= w * lap.x;
+      c[1] -= w * lap.y;
+      c[2] -= w * lap.z;
+    }
+    constant.push_back(c);
+    ++rows;
+  }
+  Sparse lf(rows, nf);
+  lf.setFromTriplets(trip.begin(), trip.end());
+  Eigen::MatrixXd rhs0(rows, 3);
+  for (int r = 0; r < rows; ++r)
+    for (int k = 0; k < 3; ++k) rhs0(r, k) = -constant[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)];
+  const Sparse lft = lf.transpose();
+  const Sparse a = lft * lf;
+  const Eigen::MatrixXd rhs = lft * rhs0;
+  Eigen::SimplicialLDLT<Sparse> solver;
+  solver.compute(a);
+  if (solver.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd x = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !x.allFinite()) return false;
+  // A singular system (a free part without fixed vertex) shows as a tiny pivot.
+  const auto d = solver.vectorD();
+  if (d.size() > 0 && d.minCoeff() <= 1e-12 * std::max(1.0, d.maxCoeff())) return false;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (unknown[v] >= 0) mesh.positions[v] = {x(unknown[v], 0), x(unknown[v], 1), x(unknown[v], 2)};
+  return true;
+}
+
+}  // namespace c4d

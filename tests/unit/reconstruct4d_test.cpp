@@ -1,0 +1,100 @@
+// Properties of the 4D pipeline (Lim et al., "4D Morphing"): one triangle list for every frame,
+// every frame closed and through its contours, volumes following the truth, output independent of
+// the thread count.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "contour4d/io/contours_json.h"
+#include "contour4d/io/output_dir.h"
+#include "contour4d/metrics/conformity.h"
+#include "contour4d/metrics/topology.h"
+#include "contour4d/motion/morph.h"
+#include "contour4d/motion/reconstruct4d.h"
+#include "contour4d/phantoms/phantom.h"
+
+namespace c4d {
+namespace {
+namespace fs = std::filesystem;
+
+Phantom small_ellipsoid() {
+  PhantomOptions o;
+  o.frames = 5;
+  o.truth_edge = 1.0;
+  return make_phantom("ellipsoid", o);
+}
+
+TEST(Reconstruct4D, EveryFrameIsClosedThroughItsContoursWithOneTriangleList) {
+  const Phantom p = small_ellipsoid();
+  Reconstruct4DReport rep;
+  const MeshSequence m = reconstruct_4d(p.contours, {}, &rep);
+  ASSERT_EQ(m.positions.size(), p.contours.frames.size());
+  for (std::size_t f = 0; f < m.positions.size(); ++f) {
+    ASSERT_EQ(m.positions[f].size(), m.positions[0].size());
+    const TriangleMesh mesh = m.frame(f);
+    TopologyOptions to;
+    to.self_intersections = C4D_HEAVY_TESTS != 0;
+    const TopologyReport t = check_topology(mesh, to);
+    EXPECT_TRUE(t.faults.empty()) << "frame " << f << ": " << (t.faults.empty() ? "" : t.faults.front());
+    EXPECT_EQ(t.genus, 0) << f;
+    EXPECT_GT(t.signed_volume, 0) << f;
+    const DistanceStats c = contour_conformity(mesh, p.contours.frames[f]);
+    EXPECT_LT(c.mean, 0.05) << "frame " << f;
+    EXPECT_NEAR(signed_volume(mesh) / p.true_volume_mm3[f], 1.0, 0.03) << "frame " << f;
+  }
+}
+
+TEST(Reconstruct4D, SubMeshLifetimesFollowContourCounts) {
+  Sequence s;
+  s.frames.resize(4);
+  auto add = [&](int f, int id, double off, int n) {
+    Slice sl;
+    sl.id = id;
+    sl.offset = off;
+    sl.contours.resize(static_cast<std::size_t>(n));
+    s.frames[static_cast<std::size_t>(f)].slices.push_back(sl);
+  };
+  for (int f = 0; f < 4; ++f) {
+    add(f, 0, 0.0, 1);
+    add(f, 1, 5.0, f < 2 ? 1 : 2);  // splits at frame 2
+  }
+  const auto life = submesh_lifetimes(s);
+  ASSERT_EQ(life.size(), 2u);
+  EXPECT_EQ(life[0].first_frame, 0);
+  EXPECT_EQ(life[0].last_frame, 1);
+  EXPECT_EQ(life[1].first_frame, 2);
+  EXPECT_EQ(life[1].contours_above, 2);
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// DEVELOPERS.md rule 4: byte-identical output whatever the thread count.
+TEST(Reconstruct4D, OutputIsByteIdenticalAtOneAndTwoThreads) {
+  const Phantom p = small_ellipsoid();
+  const fs::path dir = fs::temp_directory_path() / ("c4d_threads_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write_file_atomic(dir / "c.json", format_contours_json(p.contours));
+  for (int t : {1, 2}) {
+    const std::string cmd = std::string(C4D_CLI) + " reconstruct " + (dir / "c.json").string() + " -o " +
+                            (dir / ("out" + std::to_string(t))).string() + " --threads " + std::to_string(t) + " > /dev/null";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  for (const auto& e : fs::recursive_directory_iterator(dir / "out1")) {
+    if (!e.is_regular_file()) continue;
+    const fs::path other = dir / "out2" / fs::relative(e.path(), dir / "out1");
+    EXPECT_EQ(slurp(e.path()), slurp(other)) << e.path();
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace c4d
