@@ -151,10 +151,16 @@ std::vector<Chain> find_chains(const Sequence& seq, const TriangleMesh& mesh) {
   return chains;
 }
 
+struct ChainTarget {
+  std::uint32_t vertex;
+  Vec3 position;
+  bool pinned;  // held there by the projection and relaxation, not only guided by the RBF
+};
+
 // Matches the chains (at their current positions) to the contours of `frame`, one-to-one per slice;
 // fills `target` for every vertex of a matched chain. Reports slices whose contour count changed.
 void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const std::vector<Vec3>& x, int frame,
-                  const MorphOptions& opt, double pin_spacing, std::vector<std::pair<std::uint32_t, Vec3>>& targets,
+                  const MorphOptions& opt, double pin_spacing, std::vector<ChainTarget>& targets,
                   MorphFrameReport& fr, std::vector<SliceEvent>& events, std::map<int, int>& previous_counts) {
   std::map<int, std::vector<std::size_t>> by_slice;
   for (std::size_t c = 0; c < chains.size(); ++c) by_slice[chains[c].slice].push_back(c);
@@ -195,16 +201,18 @@ void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const s
       if (back != 1) continue;
       const ContourMatch m = match_contour(a[i], b[static_cast<std::size_t>(partner)]);
       const Chain& ch = chains[idx[i]];
-      // A contour that shrank would crowd its chain: pin every stride-th vertex only, so pinned
-      // points stay about pin_spacing apart and the others relax on the surface.
+      // Every chain vertex gets a target (they all guide the RBF). A contour that shrank would crowd
+      // its chain if all were held there: only every stride-th vertex is pinned, so pinned points
+      // stay about pin_spacing apart and the others relax on the surface.
       double len = 0;
       for (std::size_t k = 0; k < m.targets.size(); ++k) len += norm(m.targets[(k + 1) % m.targets.size()] - m.targets[k]);
       const double spacing = len / static_cast<double>(std::max<std::size_t>(1, ch.loop.size()));
-      const std::size_t stride =
-          spacing > 0 ? std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(pin_spacing / spacing - 1e-9))) : 1;
-      for (std::size_t k = 0; k < ch.loop.size(); k += stride)
-        if (stride == 1 || k + stride / 2 < ch.loop.size())
-          targets.push_back({ch.loop[k], from_plane(pl, m.targets[k])});
+      const double ratio = spacing > 0 ? pin_spacing / spacing : 1.0;
+      const std::size_t stride = ratio > 1e6 ? 0 : std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ratio - 1e-9)));
+      for (std::size_t k = 0; k < ch.loop.size(); ++k) {
+        const bool pin = stride > 0 && k % stride == 0 && (stride == 1 || k + stride / 2 < ch.loop.size());
+        targets.push_back({ch.loop[k], from_plane(pl, m.targets[k]), pin});
+      }
       ++fr.matched;
     }
   }
@@ -316,15 +324,20 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     const std::vector<Vec3>& prev = out.positions.back();
     std::vector<Vec3> x = prev;
     MorphFrameReport& fr = rep.frames[t];
+    std::vector<ChainTarget> matched;
+    match_chains(seq, chains, prev, static_cast<int>(t), opt, pin_spacing, matched, fr, rep.events, counts);
     std::vector<std::pair<std::uint32_t, Vec3>> pins;
-    match_chains(seq, chains, prev, static_cast<int>(t), opt, pin_spacing, pins, fr, rep.events, counts);
+    for (const ChainTarget& m : matched)
+      if (m.pinned) pins.push_back({m.vertex, m.position});
 
     // 1. The paper's RBF from the matched chain points (subsampled as sources).
     std::vector<Vec3> src, dst;
-    const std::size_t stride = std::max<std::size_t>(1, pins.size() / std::max<std::size_t>(1, static_cast<std::size_t>(opt.sources_per_contour) * std::max<std::size_t>(1, static_cast<std::size_t>(fr.matched))));
-    for (std::size_t k = 0; k < pins.size(); k += stride) {
-      src.push_back(prev[pins[k].first]);
-      dst.push_back(pins[k].second);
+    const std::size_t budget = static_cast<std::size_t>(std::max(1, opt.sources_per_contour)) *
+                               static_cast<std::size_t>(std::max(1, fr.matched));
+    const std::size_t stride = std::max<std::size_t>(1, matched.size() / budget);
+    for (std::size_t k = 0; k < matched.size(); k += stride) {
+      src.push_back(prev[matched[k].vertex]);
+      dst.push_back(matched[k].position);
     }
     add_far_point(x, seq.normal, src, dst);
     fr.sources = static_cast<int>(src.size());

@@ -16,68 +16,55 @@ namespace {
 
 // Optimal band path (Fuchs, Kedem & Uselton): the states (i, j) from (0, 0) to (n, m), lower index i
 // modulo n, upper index j0 + j modulo m; consecutive states differ by one step on one chain.
-// Cost of a spanning edge: its squared length, which penalises the long edges of fans harder than
-// the plain length of Fuchs et al. (fans across a bridged chain otherwise cut through the band).
-double span_cost(Vec3 a, Vec3 b) {
-  const Vec3 d = a - b;
-  return dot(d, d);
-}
-
 struct BandPath {
-  std::size_t j0 = 0;
+  std::size_t i0 = 0, j0 = 0;  // lower index i means lower[(i0 + i) % n], upper j means upper[(j0 + j) % m]
+  double cost = std::numeric_limits<double>::infinity();
   std::vector<std::pair<std::size_t, std::size_t>> states;
 };
 
-BandPath band_path(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
-                   const std::vector<Vec3>& positions, const std::vector<int>& lower_group = {},
-                   const std::vector<int>& upper_group = {}) {
+// The optimal path from the spanning edge (lower[i0], upper[j0]) around the band; empty states when
+// the groups allow none.
+BandPath band_path_from(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                        const std::vector<Vec3>& positions, const std::vector<int>& lower_group,
+                        const std::vector<int>& upper_group, std::size_t i0, std::size_t j0) {
   BandPath out;
+  out.i0 = i0;
+  out.j0 = j0;
   const std::size_t n = lower.size(), m = upper.size();
   const bool grouped = lower_group.size() == n && upper_group.size() == m;
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t j = 0; j < m; ++j) {
-    if (grouped && lower_group[0] >= 0 && upper_group[j] >= 0 && lower_group[0] != upper_group[j]) continue;
-    const double d = distance(positions[lower[0]], positions[upper[j]]);
-    if (d < best) {
-      best = d;
-      out.j0 = j;
-    }
-  }
-  const std::size_t j0 = out.j0;
-  auto L = [&](std::size_t i) { return positions[lower[i % n]]; };
+  auto L = [&](std::size_t i) { return positions[lower[(i0 + i) % n]]; };
   auto U = [&](std::size_t j) { return positions[upper[(j0 + j) % m]]; };
   auto allowed = [&](std::size_t i, std::size_t j) {
     if (!grouped) return true;
-    const int a = lower_group[i % n], b = upper_group[(j0 + j) % m];
+    const int a = lower_group[(i0 + i) % n], b = upper_group[(j0 + j) % m];
     return a < 0 || b < 0 || a == b;
   };
   const std::size_t W = m + 1;
   std::vector<double> cost((n + 1) * W, std::numeric_limits<double>::infinity());
   std::vector<char> from((n + 1) * W, 0);  // 1: came by advancing lower, 2: by advancing upper
+  if (!allowed(0, 0)) return out;
   cost[0] = 0.0;
   for (std::size_t i = 0; i <= n; ++i)
     for (std::size_t j = 0; j <= m; ++j) {
       const double c = cost[i * W + j];
       if (!(c < std::numeric_limits<double>::infinity())) continue;
       if (i < n && allowed(i + 1, j)) {
-        const double nc = c + span_cost(L(i + 1), U(j));
+        const double nc = c + distance(L(i + 1), U(j));
         if (nc < cost[(i + 1) * W + j]) {
           cost[(i + 1) * W + j] = nc;
           from[(i + 1) * W + j] = 1;
         }
       }
       if (j < m && allowed(i, j + 1)) {
-        const double nc = c + span_cost(L(i), U(j + 1));
+        const double nc = c + distance(L(i), U(j + 1));
         if (nc < cost[i * W + j + 1]) {
           cost[i * W + j + 1] = nc;
           from[i * W + j + 1] = 2;
         }
       }
     }
-  if (!(cost[n * W + m] < std::numeric_limits<double>::infinity())) {
-    out.states.clear();
-    return out;
-  }
+  out.cost = cost[n * W + m];
+  if (!(out.cost < std::numeric_limits<double>::infinity())) return out;
   std::size_t i = n, j = m;
   out.states.push_back({i, j});
   while (i > 0 || j > 0) {
@@ -87,6 +74,56 @@ BandPath band_path(const std::vector<std::uint32_t>& lower, const std::vector<st
   }
   std::reverse(out.states.begin(), out.states.end());
   return out;
+}
+
+// Entries whose vertex appears once in the chain, with neighbours that appear once (not on a bridge).
+std::vector<char> plain_entries(const std::vector<std::uint32_t>& chain) {
+  std::vector<std::uint32_t> sorted = chain;
+  std::sort(sorted.begin(), sorted.end());
+  auto once = [&](std::uint32_t v) {
+    const auto r = std::equal_range(sorted.begin(), sorted.end(), v);
+    return r.second - r.first == 1;
+  };
+  const std::size_t n = chain.size();
+  std::vector<char> out(n, 0);
+  for (std::size_t k = 0; k < n; ++k)
+    out[k] = once(chain[k]) && once(chain[(k + 1) % n]) && once(chain[(k + n - 1) % n]);
+  return out;
+}
+
+// Optimal band (Fuchs, Kedem & Uselton): starts on lower[0] and its nearest upper vertex. Bridged
+// chains (repeated vertices) start on a plain entry instead, and the best of the few nearest upper
+// starts is taken: a start on a bridge end is ambiguous (both sides of the bridge meet it).
+BandPath band_path(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                   const std::vector<Vec3>& positions, const std::vector<int>& lower_group = {},
+                   const std::vector<int>& upper_group = {}) {
+  const std::size_t n = lower.size(), m = upper.size();
+  const bool grouped = lower_group.size() == n && upper_group.size() == m;
+  const std::vector<char> lp = plain_entries(lower), up = plain_entries(upper);
+  const bool bridged = std::find(lp.begin(), lp.end(), 0) != lp.end() || std::find(up.begin(), up.end(), 0) != up.end();
+  std::size_t i0 = 0;
+  if (bridged)
+    for (std::size_t k = 0; k < n; ++k)
+      if (lp[k]) {
+        i0 = k;
+        break;
+      }
+  std::vector<std::pair<double, std::size_t>> starts;
+  for (std::size_t j = 0; j < m; ++j) {
+    if (grouped && lower_group[i0] >= 0 && upper_group[j] >= 0 && lower_group[i0] != upper_group[j]) continue;
+    if (bridged && !up[j]) continue;
+    starts.push_back({distance(positions[lower[i0]], positions[upper[j]]), j});
+  }
+  if (starts.empty())
+    for (std::size_t j = 0; j < m; ++j) starts.push_back({distance(positions[lower[i0]], positions[upper[j]]), j});
+  const std::size_t tries = bridged ? std::min<std::size_t>(5, starts.size()) : 1;
+  std::partial_sort(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(tries), starts.end());
+  BandPath best;
+  for (std::size_t t = 0; t < tries; ++t) {
+    BandPath p = band_path_from(lower, upper, positions, lower_group, upper_group, i0, starts[t].second);
+    if (!p.states.empty() && p.cost < best.cost) best = std::move(p);
+  }
+  return best;
 }
 
 }  // namespace
@@ -104,7 +141,8 @@ std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const
   if (n == 0 || m == 0) return out;
   BandPath path = band_path(lower, upper, positions, lower_group, upper_group);
   if (path.states.empty()) path = band_path(lower, upper, positions);  // no tiling respects the groups
-  auto L = [&](std::size_t i) { return lower[i % n]; };
+  if (path.states.empty()) return out;
+  auto L = [&](std::size_t i) { return lower[(path.i0 + i) % n]; };
   auto U = [&](std::size_t j) { return upper[(path.j0 + j) % m]; };
   out.reserve(n + m);
   for (std::size_t k = path.states.size() - 1; k > 0; --k) {
@@ -123,6 +161,7 @@ std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>
   const std::size_t n = lower.size(), m = upper.size();
   if (n < 3 || m < 3 || intervals < 2) return rows;
   const BandPath path = band_path(lower, upper, positions);
+  if (path.states.empty()) return rows;
   const std::size_t spans = path.states.size() - 1;  // n + m spanning edges, the last equals the first
   for (int r = 1; r < intervals; ++r) {
     const double t = static_cast<double>(r) / intervals;
@@ -130,7 +169,7 @@ std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>
     std::vector<double> cum(spans + 1, 0.0);
     for (std::size_t k = 0; k < spans; ++k) {
       const auto [i, j] = path.states[k];
-      q[k] = (1.0 - t) * positions[lower[i % n]] + t * positions[upper[(path.j0 + j) % m]];
+      q[k] = (1.0 - t) * positions[lower[(path.i0 + i) % n]] + t * positions[upper[(path.j0 + j) % m]];
       if (k > 0) cum[k] = cum[k - 1] + distance(q[k - 1], q[k]);
     }
     cum[spans] = cum[spans - 1] + distance(q[spans - 1], q[0]);

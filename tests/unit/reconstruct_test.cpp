@@ -121,6 +121,8 @@ void expect_closed(const c4d::TriangleMesh& m, long euler, std::size_t component
 c4d::SurfaceOptions coarse() {
   c4d::SurfaceOptions o;
   o.remesh = false;
+  o.rows = false;
+  o.fairing = false;
   o.smoothing_iterations = 0;
   return o;
 }
@@ -186,8 +188,14 @@ TEST(Reconstruct, BranchOneToTwoAndTwoToOne) {
   for (const Shape& shape : {split, merge}) {
     const auto seq = stack(range(0, 15, 5), shape);
     for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+      SCOPED_TRACE(opt.fairing ? "default options" : "coarse");
       c4d::SurfaceReport rep;
       const auto m = c4d::reconstruct_frame(seq, 0, opt, &rep);
+      for (const auto& pr : c4d::self_intersecting_pairs(m)) {
+        for (std::uint32_t t : pr)
+          for (auto v : m.triangles[t]) std::printf(" (%.3f %.3f %.3f)", m.positions[v].x, m.positions[v].y, m.positions[v].z);
+        std::printf("\n");
+      }
       expect_closed(m, 2, 1);
       EXPECT_EQ(rep.branchings, 1);
       EXPECT_EQ(rep.caps, 3);
@@ -429,8 +437,24 @@ TEST(ReconstructDebug, Dump) {
   c4d::SurfaceOptions o;
   o.fairing = std::getenv("C4D_NOFAIR") == nullptr;
   o.remesh = std::getenv("C4D_NOREMESH") == nullptr;
+  if (std::getenv("C4D_FLAT")) o.caps = c4d::CapStyle::Flat;
   c4d::SurfaceReport rep;
   const auto m = c4d::reconstruct_frame(ph.contours, 0, o, &rep);
+  {
+    const Accuracy a = accuracy(ph, m, false);
+    std::printf("mean %.4f max %.3f volume %+.2f %% <25 %.3f %% min %.1f\n", a.mean, a.max, 100 * a.volume_error,
+                100 * a.angles.share_below_25, a.angles.min_deg);
+    // Error by height.
+    std::vector<double> sum(40, 0), cnt(40, 0);
+    for (const Vec3& p : m.positions) {
+      const double h = c4d::dot(ph.contours.normal, p);
+      const int b = std::clamp(static_cast<int>((h - ph.slab_min) / (ph.slab_max - ph.slab_min) * 39.999), 0, 39);
+      sum[b] += c4d::analytic_distance(ph, 0, p);
+      cnt[b] += 1;
+    }
+    for (int b = 0; b < 40; ++b) std::printf("%.1f:%.3f ", ph.slab_min + (b + 0.5) / 40 * (ph.slab_max - ph.slab_min), cnt[b] ? sum[b] / cnt[b] : 0.0);
+    std::printf("\n");
+  }
   FILE* f = std::fopen("/tmp/c4d_debug.obj", "w");
   for (const Vec3& p : m.positions) std::fprintf(f, "v %.6f %.6f %.6f\n", p.x, p.y, p.z);
   for (const auto& t : m.triangles) std::fprintf(f, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
