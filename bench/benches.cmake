@@ -12,3 +12,8 @@ endif()
 add_executable(morph_bench ${CMAKE_CURRENT_LIST_DIR}/morph_bench.cpp)
 target_link_libraries(morph_bench PRIVATE benchmark::benchmark contour4d TBB::tbb)
 c4d_set_warnings(morph_bench)
+# One-frame surface speed (issue 3): output vertices per second for phantoms and bivme frame 0.
+add_executable(surface_bench ${CMAKE_CURRENT_LIST_DIR}/surface_bench.cpp)
+target_link_libraries(surface_bench PRIVATE benchmark::benchmark contour4d)
+target_compile_definitions(surface_bench PRIVATE C4D_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data")
+c4d_set_warnings(surface_bench)

@@ -507,6 +507,8 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
           lowest = std::min(lowest, slices[s].plane.origin.z - (top ? 0.0 : hk));
           highest = std::max(highest, slices[s].plane.origin.z + (top ? hk : 0.0));
         }
+        bool lone = true;
+        for (int g : group) lone = lone && !nodes[g].linked_up && !nodes[g].linked_down;
         std::vector<std::uint32_t> id;
         for (int g : group) id.insert(id.end(), nodes[g].chain.begin(), nodes[g].chain.end());
         const double dir = top ? 1.0 : -1.0;
@@ -515,7 +517,8 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
           // Flat lids stay in their plane; domes keep their shape up to a smooth join with the wall.
           fixed.push_back(opt.caps == CapStyle::Flat ? 1 : 0);
           keep_shape.resize(b.positions.size(), 0);
-          keep_shape.back() = opt.caps == CapStyle::Rounded ? 1 : 0;
+          // A contour without wall (lone slice) has nothing to continue: its domes keep their shape.
+          keep_shape.back() = opt.caps == CapStyle::Rounded && (opt.cap_shape_weight > 0 || lone) ? 1 : 0;
         }
         const bool flip = top == lone_hole;
         for (const Triangle& t : cap.triangles)
@@ -536,7 +539,9 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
                            " non-manifold vertices); fairing and smoothing skipped");
   bool moved = false;
   if (manifold && opt.fairing) {
-    if (fair_thin_plate(mesh, fixed, keep_shape)) moved = true;
+    FairingOptions fo;
+    fo.shape_weight = opt.cap_shape_weight > 0 ? opt.cap_shape_weight : 1.0;
+    if (fair_thin_plate(mesh, fixed, keep_shape, fo)) moved = true;
     else rep.warnings.push_back("fairing failed (singular system); the surface is left unsmoothed");
   }
   if (manifold && opt.smoothing_iterations > 0) {

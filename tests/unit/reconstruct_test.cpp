@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <functional>
 
 #include "contour4d/core/errors.h"
@@ -137,10 +136,11 @@ TEST(Reconstruct, CylinderIsClosedOutwardAndThroughTheContours) {
     EXPECT_EQ(rep.caps, 2);
     EXPECT_EQ(rep.connections.size(), 4u);
     EXPECT_TRUE(rep.warnings.empty());
-    // Volume: the prism of the 63-gon between the end slices plus two domes no higher than 2.5 mm.
+    // Volume: the prism of the 63-gon between the end slices plus two ends no higher than 2.5 mm
+    // (faired caps continue the vertical wall, so they may fill up to the 2.5 mm cylinder).
     const double prism = 0.5 * 63 * 100 * std::sin(2 * M_PI / 63) * 20;
     EXPECT_GT(c4d::signed_volume(m), prism);
-    EXPECT_LT(c4d::signed_volume(m), prism + 2 * (2.0 / 3.0) * M_PI * 100 * 2.5 * 1.01);
+    EXPECT_LT(c4d::signed_volume(m), prism + 2 * M_PI * 100 * 2.5 * 1.01);
     // No overshoot beyond half a slice spacing.
     for (const Vec3& p : m.positions) {
       EXPECT_GE(p.z, -2.5 - 1e-9);
@@ -424,62 +424,20 @@ TEST(ReconstructPhantoms, AccuracyVolumeAndQuality) {
       EXPECT_TRUE(rep.closed);
       EXPECT_FALSE(rep.self_intersects);
       EXPECT_GT(rep.volume, 0.0);
+      // Measured figures (docs/algorithms/one_frame_surface.md) with some headroom: regressions fail.
+      if (name == "ellipsoid" || name.rfind("left-heart", 0) == 0) {
+        EXPECT_LT(std::abs(a.volume_error), 0.01);  // issue 3: volume within 1 %
+        EXPECT_LT(a.mean, 0.025);
+        EXPECT_GT(a.angles.share_40_80, 0.85);
+      } else {
+        EXPECT_LT(std::abs(a.volume_error), 0.05);
+        EXPECT_LT(a.mean, 0.1);
+      }
+      if (!oblique) {
+        EXPECT_LT(a.conformity_mean, 0.01);  // against the original input contours
+      }
     }
 }
 
 }  // namespace
 
-namespace {
-TEST(ReconstructDebug, Dump) {
-  const char* name = std::getenv("C4D_DEBUG_PHANTOM");
-  if (!name) GTEST_SKIP();
-  const c4d::Phantom ph = c4d::make_phantom(name, {});
-  c4d::SurfaceOptions o;
-  o.fairing = std::getenv("C4D_NOFAIR") == nullptr;
-  o.remesh = std::getenv("C4D_NOREMESH") == nullptr;
-  if (std::getenv("C4D_FLAT")) o.caps = c4d::CapStyle::Flat;
-  c4d::SurfaceReport rep;
-  const auto m = c4d::reconstruct_frame(ph.contours, 0, o, &rep);
-  {
-    const Accuracy a = accuracy(ph, m, false);
-    std::printf("mean %.4f max %.3f volume %+.2f %% <25 %.3f %% min %.1f\n", a.mean, a.max, 100 * a.volume_error,
-                100 * a.angles.share_below_25, a.angles.min_deg);
-    // Error by height.
-    std::vector<double> sum(40, 0), cnt(40, 0);
-    for (const Vec3& p : m.positions) {
-      const double h = c4d::dot(ph.contours.normal, p);
-      const int b = std::clamp(static_cast<int>((h - ph.slab_min) / (ph.slab_max - ph.slab_min) * 39.999), 0, 39);
-      sum[b] += c4d::analytic_distance(ph, 0, p);
-      cnt[b] += 1;
-    }
-    for (int b = 0; b < 40; ++b) std::printf("%.1f:%.3f ", ph.slab_min + (b + 0.5) / 40 * (ph.slab_max - ph.slab_min), cnt[b] ? sum[b] / cnt[b] : 0.0);
-    std::printf("\n");
-  }
-  FILE* f = std::fopen("/tmp/c4d_debug.obj", "w");
-  for (const Vec3& p : m.positions) std::fprintf(f, "v %.6f %.6f %.6f\n", p.x, p.y, p.z);
-  for (const auto& t : m.triangles) std::fprintf(f, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
-  std::fclose(f);
-  for (const auto& w : rep.warnings) std::printf("warning: %s\n", w.c_str());
-  int shown_pairs = 0;
-  for (const auto& pr : c4d::self_intersecting_pairs(m)) {
-    if (shown_pairs++ > 12) break;
-    for (std::uint32_t t : pr) {
-      const auto& tr = m.triangles[t];
-      std::printf("tri %u:", t);
-      for (auto v : tr) std::printf(" (%.3f %.3f %.3f)", m.positions[v].x, m.positions[v].y, m.positions[v].z);
-      std::printf(" |");
-    }
-    std::printf("\n");
-  }
-  std::printf("slab %.2f..%.2f normal %.2f %.2f %.2f\n", ph.slab_min, ph.slab_max, ph.contours.normal.x, ph.contours.normal.y, ph.contours.normal.z);
-  for (const auto& c : rep.connections) std::printf("link %d.%d - %d.%d sim %.2f\n", c.slice_a, c.contour_a, c.slice_b, c.contour_b, c.similarity);
-  std::printf("branchings %d caps %d contours %d\n", rep.branchings, rep.caps, rep.contours);
-  int shown = 0;
-  for (const Vec3& p : m.positions) {
-    const double d = c4d::analytic_distance(ph, 0, p);
-    const double h = c4d::dot(ph.contours.normal, p);
-    if (h < ph.slab_min || h > ph.slab_max) continue;
-    if (std::abs(d) > 0.3 && shown++ < 30) std::printf("far %.3f at %.3f %.3f %.3f\n", d, p.x, p.y, p.z);
-  }
-}
-}  // namespace

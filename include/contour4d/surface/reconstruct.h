@@ -27,6 +27,7 @@ struct SurfaceOptions {
   bool remesh = true;            //!< isotropic remeshing (CGAL) of the bands without rows (branchings; all bands when rows = false)
   int remesh_iterations = 5;     //!< remeshing rounds
   bool fairing = true;           //!< thin-plate fairing with the contours fixed: smooth across contours (fairing.h)
+  double cap_shape_weight = 0.0; //!< fairing weight keeping the initial Rounded dome shape (0: the dome is faired freely and continues the wall; its tip is still clamped to cap_height)
   int smoothing_iterations = 0;  //!< λ|μ|ε pass pairs after fairing (0: none); contour vertices fixed
   double smoothing_epsilon = 0.2;  //!< ε bound of the smoothing (mm)
   bool check_self_intersections = true;  //!< run CGAL's self-intersection test for the report
