@@ -208,7 +208,9 @@ void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const s
       for (std::size_t k = 0; k < m.targets.size(); ++k) len += norm(m.targets[(k + 1) % m.targets.size()] - m.targets[k]);
       const double spacing = len / static_cast<double>(std::max<std::size_t>(1, ch.loop.size()));
       const double ratio = spacing > 0 ? pin_spacing / spacing : 1.0;
-      const std::size_t stride = ratio > 1e6 ? 0 : std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ratio - 1e-9)));
+      const std::size_t stride = (pin_spacing <= 0 || ratio > 1e6)
+                                     ? 0
+                                     : std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ratio - 1e-9)));
       for (std::size_t k = 0; k < ch.loop.size(); ++k) {
         const bool pin = stride > 0 && k % stride == 0 && (stride == 1 || k + stride / 2 < ch.loop.size());
         targets.push_back({ch.loop[k], from_plane(pl, m.targets[k]), pin});
@@ -301,6 +303,10 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   const std::size_t nv = frame0.positions.size();
   const auto nb = neighbours(nv, frame0.triangles);
   const std::vector<Chain> chains = find_chains(seq, frame0);
+  // Rest lengths of the relaxation springs: frame 0's edges, per vertex in neighbour order.
+  std::vector<std::vector<double>> rest(nv);
+  for (std::size_t i = 0; i < nv; ++i)
+    for (std::uint32_t j : nb[i]) rest[i].push_back(distance(frame0.positions[i], frame0.positions[j]));
   // Pinned chain vertices are kept at least this far apart (a fraction of the median edge).
   std::vector<double> edge_lengths;
   for (const Triangle& tri : frame0.triangles)
@@ -391,6 +397,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
       fr.projection_max = mx;
       // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
+      const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
       for (int r = 0; r < opt.relax_iterations; ++r) {
         std::vector<Vec3> normals;
         (void)proj.project(x, &normals);
@@ -398,10 +405,18 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
           std::vector<Vec3> moved = x;
           tbb::parallel_for(std::size_t(0), nv, [&](std::size_t i) {
             if (pinned[i]) return;
-            Vec3 c{};
-            for (std::uint32_t j : nb[i]) c += x[j];
-            c = c / static_cast<double>(std::max<std::size_t>(1, nb[i].size()));
-            Vec3 d = c - x[i];
+            // Umbrella (uniform Laplacian) move, optionally blended with springs whose rest lengths are
+            // frame 0's edges scaled by the change of area: the springs' equilibrium is a similar copy
+            // of frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone
+            // can tangle under strong compression, so the default is the umbrella alone.
+            Vec3 d{}, c{};
+            for (std::size_t k = 0; k < nb[i].size(); ++k) {
+              const Vec3 e = x[nb[i][k]] - x[i];
+              const double len = norm(e);
+              c += e;
+              if (len > 0) d += (std::clamp((len - scale * rest[i][k]) / len, -0.3, 0.3)) * e;
+            }
+            d = (opt.spring_weight * d + (1.0 - opt.spring_weight) * c) / static_cast<double>(std::max<std::size_t>(1, nb[i].size()));
             d -= dot(d, normals[i]) * normals[i];
             moved[i] = x[i] + opt.relax_step * d;
           });

@@ -26,7 +26,9 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   std::mutex progress_mutex;
   tbb::parallel_for(std::size_t(0), count, [&](std::size_t f) {
     try {
-      surfaces[f] = reconstruct_frame(seq, static_cast<int>(f), options.surface, &rep.surfaces[f]);
+      SurfaceOptions so = options.surface;
+      if (f == 0 && options.remesh_frame0) so.rows = false;
+      surfaces[f] = reconstruct_frame(seq, static_cast<int>(f), so, &rep.surfaces[f]);
     } catch (...) {
       errors[f] = std::current_exception();
     }

@@ -101,7 +101,8 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
       corners.unite(corner(t1, a, hes[i].lo), corner(t2, b, hes[i].lo));
       corners.unite(corner(t1, a, hes[i].hi), corner(t2, b, hes[i].hi));
     }
-    for (std::size_t k = i + 1; k < j; ++k) faces.unite(hes[i].tri, hes[k].tri);
+    for (auto it = hes.begin() + static_cast<std::ptrdiff_t>(i + 1); it != hes.begin() + static_cast<std::ptrdiff_t>(j); ++it)
+      faces.unite(hes[i].tri, it->tri);
     i = j;
   }
   // A vertex is manifold when its corners form one fan.

@@ -24,12 +24,16 @@ struct MorphOptions {
   int rbf_steps = 10;              //!< RBF sub-steps against crossing paths (paper: 10); RbfProject uses 1
   int sources_per_contour = 48;    //!< chain points per matched contour used as RBF sources
   double threshold = 0.3;          //!< similarity for a chain↔contour match (paper: 30 %)
-  double pin_spacing = 0.75;       //!< pinned contour vertices at least this × median edge apart (shrunk contours)
+  double pin_spacing = 0.0;        //!< > 0: also hold frame-0 contour vertices on later contours, at least this ×
+                                   //!< the median edge apart; 0: none held (they guide the RBF, the fit comes
+                                   //!< from each frame's own surface; best triangles)
   int projection_iterations = 6;   //!< regularised projection rounds (RbfProject)
   double stiffness = 1.0;          //!< weight of the Laplacian term against the closest-point term
   int relax_iterations = 4;        //!< tangential relaxation rounds, each ended by an exact re-projection
   int relax_sweeps = 100;          //!< Jacobi sweeps per round in the tangent planes (cheap)
-  double relax_step = 0.5;         //!< fraction of the tangential move toward the neighbours' centroid
+  double relax_step = 0.5;         //!< fraction of the tangential move per sweep
+  double spring_weight = 0.0;      //!< relaxation: share of springs (frame-0 edge lengths) against the umbrella
+                                   //!< (uniform Laplacian); springs keep frame 0's shapes but can tangle
 };
 
 //! A 2D contour topology change on one slice between two frames.

@@ -17,6 +17,9 @@ namespace c4d {
 struct Reconstruct4DOptions {
   SurfaceOptions surface;  //!< the one-frame surface (frame 0, and each frame's target for RbfProject)
   MorphOptions morph;      //!< the deformation through the frames
+  bool remesh_frame0 = true;  //!< frame 0's triangles are carried through every frame: build them with
+                              //!< isotropic remeshing of every band (best shapes); the other frames' own
+                              //!< surfaces only give geometry and use surface.rows (fast)
   std::function<void(const char* stage, int done, int total)> progress;  //!< optional progress callback
 };
 
