@@ -45,7 +45,8 @@ if [ $run_sanitize -eq 1 ]; then
   echo "== ASan+UBSan build and tests (build-sanitize/) =="
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   export LSAN_OPTIONS=suppressions=$root/tests/lsan.supp   # Mesa/EGL driver frames only
-  build_and_test "$root/build-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DC4D_SANITIZE=ON -DC4D_BUILD_BENCH=OFF \
+  # Warnings are errors in the release build; GCC 12 under ASan warns falsely inside libstdc++ (<regex>).
+  build_and_test "$root/build-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DC4D_SANITIZE=ON -DC4D_BUILD_BENCH=OFF -DC4D_STRICT=OFF \
     -DC4D_HEAVY_TESTS=OFF
 fi
 

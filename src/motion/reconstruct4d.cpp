@@ -27,7 +27,7 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   tbb::parallel_for(std::size_t(0), count, [&](std::size_t f) {
     try {
       SurfaceOptions so = options.surface;
-      if (f == 0 && options.remesh_frame0) so.rows = false;
+      if (f > 0 && options.fast_targets) so.rows = true;
       surfaces[f] = reconstruct_frame(seq, static_cast<int>(f), so, &rep.surfaces[f]);
     } catch (...) {
       errors[f] = std::current_exception();

@@ -17,9 +17,8 @@ namespace c4d {
 struct Reconstruct4DOptions {
   SurfaceOptions surface;  //!< the one-frame surface (frame 0, and each frame's target for RbfProject)
   MorphOptions morph;      //!< the deformation through the frames
-  bool remesh_frame0 = true;  //!< frame 0's triangles are carried through every frame: build them with
-                              //!< isotropic remeshing of every band (best shapes); the other frames' own
-                              //!< surfaces only give geometry and use surface.rows (fast)
+  bool fast_targets = true;   //!< frames after 0 only give geometry (frame 0's triangles are carried):
+                              //!< build their surfaces with interpolated rows (SurfaceOptions::rows), fast
   std::function<void(const char* stage, int done, int total)> progress;  //!< optional progress callback
 };
 
