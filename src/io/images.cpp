@@ -101,6 +101,30 @@ void register_factories() {
   });
 }
 
+// MetaImage and NRRD headers may name their data files with a printf pattern ("slice%03d.raw"). ITK's
+// MetaIO passes the header's text to snprintf as the format, so a hostile header ("%s") crashes it
+// (found by fuzz_images). Such patterns are refused before ITK reads the file.
+void reject_data_file_patterns(const fs::path& file) {
+  const std::string name = lower(file.filename().string());
+  const bool meta = ends_with(name, ".mhd") || ends_with(name, ".mha");
+  const bool nrrd = ends_with(name, ".nhdr") || ends_with(name, ".nrrd");
+  if (!meta && !nrrd) return;
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  for (int n = 0; n < 200 && std::getline(in, line); ++n) {
+    const std::size_t sep = line.find_first_of(meta ? "=" : ":");
+    if (sep == std::string::npos) continue;
+    const std::string key = lower(line.substr(0, sep));
+    const bool hit = meta ? key.find("elementdatafile") != std::string::npos
+                          : (key.find("data file") != std::string::npos || key.find("datafile") != std::string::npos);
+    if (!hit) continue;
+    if (line.find('%', sep) != std::string::npos)
+      throw IoError(ErrorCode::Format, at_file(file), "the header names its data files with a printf-style pattern ('%')",
+                    "contour4d reads one data file per header: write the image as a single .mha, .nrrd or .nii.gz");
+    return;  // the data follows this line in single-file formats
+  }
+}
+
 // A header naming a data file beside it (.mhd ElementDataFile, .nhdr "data file") that is missing.
 void check_companion(const fs::path& file) {
   const std::string name = lower(file.filename().string());
@@ -227,6 +251,7 @@ std::vector<LabelVolume> read_label_image(const fs::path& file) {
     throw IoError(ErrorCode::FileNotFound, at_file(file), "no such file", "check the path");
   if (fs::file_size(file, ec) == 0)
     throw IoError(ErrorCode::EmptyFile, at_file(file), "the file is empty", "give a label image");
+  reject_data_file_patterns(file);
   check_companion(file);
   check_gzip_complete(file);
   itk::ImageIOBase::Pointer io =

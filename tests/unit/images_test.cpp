@@ -399,6 +399,10 @@ TEST(LabelImagesBadInput, EachFailureHasItsOwnCode) {
     EXPECT_EQ(c, ErrorCode::Parse) << "kept " << keep << " of " << bytes.size() << " bytes";
   }
 
+  // A printf-style data file pattern, which crashes ITK's MetaIO (found by fuzz_images).
+  EXPECT_EQ(code_of([&] { read_label_series(fs::path(C4D_CORPUS_DIR) / "images-bad" / "bad_13_printf_pattern.mha"); }),
+            ErrorCode::Format);
+
   // Missing file; MetaImage header whose data file is missing; empty file.
   EXPECT_EQ(code_of([&] { read_label_series(dir / "none.nii.gz"); }), ErrorCode::FileNotFound);
   std::ofstream(dir / "lone.mhd") << "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
