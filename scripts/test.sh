@@ -67,9 +67,11 @@ if [ $run_fuzz -eq 1 ]; then
     rm -rf "$work"
   done
   # The label-image reader goes through ITK (GCC only): mutation driver from the sanitizer build.
+  export ASAN_OPTIONS=abort_on_error=1 LSAN_OPTIONS=suppressions=$root/tests/lsan.supp
   if [ -x "$root/build-sanitize/tests/fuzz_images_mutate" ]; then
     echo "-- fuzz_images (mutation driver, ASan+UBSan)"
-    "$root/build-sanitize/tests/fuzz_images_mutate" -max_total_time="$fuzz_seconds" "$root/tests/corpus/images"
+    (cd "$(mktemp -d)" && "$root/build-sanitize/tests/fuzz_images_mutate" -max_total_time="$fuzz_seconds" -timeout=20 \
+      "$root/tests/corpus/images")
   else
     echo "-- fuzz_images skipped: run scripts/test.sh --sanitize first (it builds build-sanitize/tests/fuzz_images_mutate)"
   fi

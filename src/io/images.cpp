@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <limits>
 #include <mutex>
 
@@ -117,6 +118,23 @@ void reject_data_file_patterns(const fs::path& file) {
     const std::string key = lower(line.substr(0, sep));
     const bool hit = meta ? key.find("elementdatafile") != std::string::npos
                           : (key.find("data file") != std::string::npos || key.find("datafile") != std::string::npos);
+    // Dimension fields: ITK's readers loop on them before checking (NDims = -3 hangs MetaIO).
+    const bool dim_key = meta ? (key.find("ndims") != std::string::npos || key.find("dimsize") != std::string::npos)
+                              : (key == "dimension" || key == "sizes");
+    if (dim_key) {
+      std::istringstream values(line.substr(sep + 1));
+      std::string v;
+      int count = 0;
+      while (values >> v) {
+        const bool digits = !v.empty() && v.size() <= 7 && v.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits || std::stol(v) < 1 || ++count > 5)
+          throw IoError(ErrorCode::Format, at_file(file), "invalid image dimensions in the header: '" + line.substr(0, 80) + "'",
+                        "give a 3D or 4D label image with positive sizes");
+      }
+      if (count == 0)
+        throw IoError(ErrorCode::Format, at_file(file), "empty image dimensions in the header", "give a 3D or 4D label image");
+      continue;
+    }
     if (!hit) continue;
     if (line.find('%', sep) != std::string::npos)
       throw IoError(ErrorCode::Format, at_file(file), "the header names its data files with a printf-style pattern ('%')",

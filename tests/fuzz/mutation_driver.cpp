@@ -3,8 +3,13 @@
 // overwrites, truncation, insertion, chunk copies) until -max_total_time seconds have passed. Not
 // coverage-guided, so weaker than libFuzzer; run under ASan+UBSan it still finds crashes and leaks.
 //
-// usage: fuzz_X_mutate [-max_total_time=SECONDS] [-seed=N] CORPUS_DIR_OR_FILE...
+// usage: fuzz_X_mutate [-max_total_time=SECONDS] [-timeout=SECONDS] [-seed=N] CORPUS_DIR_OR_FILE...
+// An input that takes longer than -timeout (default 10 s) is a hang: it is saved as timeout-input.bin and
+// the driver exits with code 70, as libFuzzer's -timeout does.
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -18,6 +23,21 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
 
 namespace {
+
+const std::vector<std::uint8_t>* g_current = nullptr;
+
+extern "C" void on_timeout(int) {
+  if (g_current) {
+    std::FILE* f = std::fopen("timeout-input.bin", "wb");
+    if (f) {
+      std::fwrite(g_current->data(), 1, g_current->size(), f);
+      std::fclose(f);
+    }
+  }
+  const char msg[] = "mutation driver: an input ran past -timeout (a hang); saved as timeout-input.bin\n";
+  (void)!write(2, msg, sizeof(msg) - 1);
+  _exit(70);
+}
 
 std::vector<std::uint8_t> read_all(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -68,12 +88,15 @@ void mutate(std::vector<std::uint8_t>& d, std::mt19937_64& rng) {
 
 int main(int argc, char** argv) {
   double seconds = 60;
+  unsigned timeout = 10;
   std::uint64_t seed = 1;
   std::vector<std::vector<std::uint8_t>> corpus;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a.rfind("-max_total_time=", 0) == 0) {
       seconds = std::stod(a.substr(16));
+    } else if (a.rfind("-timeout=", 0) == 0) {
+      timeout = static_cast<unsigned>(std::stoul(a.substr(9)));
     } else if (a.rfind("-seed=", 0) == 0) {
       seed = std::stoull(a.substr(6));
     } else if (std::filesystem::is_directory(a)) {
@@ -84,14 +107,22 @@ int main(int argc, char** argv) {
     }
   }
   if (corpus.empty()) corpus.push_back({});
-  for (const auto& c : corpus) LLVMFuzzerTestOneInput(c.data(), c.size());
+  std::signal(SIGALRM, on_timeout);
+  for (const auto& c : corpus) {
+    g_current = &c;
+    alarm(timeout);
+    LLVMFuzzerTestOneInput(c.data(), c.size());
+  }
   std::mt19937_64 rng(seed);
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   std::size_t runs = 0;
   while (std::chrono::steady_clock::now() < end) {
     std::vector<std::uint8_t> d = corpus[rng() % corpus.size()];
     mutate(d, rng);
+    g_current = &d;
+    alarm(timeout);
     LLVMFuzzerTestOneInput(d.data(), d.size());
+    alarm(0);
     ++runs;
   }
   std::printf("mutation driver: %zu runs in %.0f s over %zu seeds, no crash\n", runs, seconds, corpus.size());

@@ -403,6 +403,10 @@ TEST(LabelImagesBadInput, EachFailureHasItsOwnCode) {
   EXPECT_EQ(code_of([&] { read_label_series(fs::path(C4D_CORPUS_DIR) / "images-bad" / "bad_13_printf_pattern.mha"); }),
             ErrorCode::Format);
 
+  // Negative dimensions, which hang ITK's MetaIO (found by fuzz_images).
+  EXPECT_EQ(code_of([&] { read_label_series(fs::path(C4D_CORPUS_DIR) / "images-bad" / "bad_13_negative_ndims.mha"); }),
+            ErrorCode::Format);
+
   // Missing file; MetaImage header whose data file is missing; empty file.
   EXPECT_EQ(code_of([&] { read_label_series(dir / "none.nii.gz"); }), ErrorCode::FileNotFound);
   std::ofstream(dir / "lone.mhd") << "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
