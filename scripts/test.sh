@@ -70,8 +70,16 @@ if [ $run_fuzz -eq 1 ]; then
   export ASAN_OPTIONS=abort_on_error=1 LSAN_OPTIONS=suppressions=$root/tests/lsan.supp
   if [ -x "$root/build-sanitize/tests/fuzz_images_mutate" ]; then
     echo "-- fuzz_images (mutation driver, ASan+UBSan)"
-    (cd "$(mktemp -d)" && "$root/build-sanitize/tests/fuzz_images_mutate" -max_total_time="$fuzz_seconds" -timeout=20 \
-      "$root/tests/corpus/images")
+    # ITK prints a warning for most malformed inputs: keep them in a log, show the result.
+    work=$(mktemp -d)
+    if ! (cd "$work" && "$root/build-sanitize/tests/fuzz_images_mutate" -max_total_time="$fuzz_seconds" -timeout=20 \
+          "$root/tests/corpus/images" > "$work/fuzz_images.log" 2>&1); then
+      tail -n 80 "$work/fuzz_images.log"
+      echo "fuzz_images failed: input kept in $work (timeout-input.bin for a hang)" >&2
+      exit 1
+    fi
+    grep -a "mutation driver" "$work/fuzz_images.log"
+    rm -rf "$work"
   else
     echo "-- fuzz_images skipped: run scripts/test.sh --sanitize first (it builds build-sanitize/tests/fuzz_images_mutate)"
   fi
