@@ -37,15 +37,6 @@ bool crossing(Vec2 p, Vec2 q, Vec2 a, Vec2 b, double& t) {
   return t > 0.0 && t < 1.0 && w >= 0.0 && w <= 1.0;
 }
 
-// Distance from p to segment a-b.
-double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double l2 = dot(ab, ab);
-  double t = l2 > 0.0 ? dot(p - a, ab) / l2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return norm(p - (a + t * ab));
-}
-
 }  // namespace
 
 bool point_in_polygon(Vec2 p, const std::vector<Vec2>& poly) {

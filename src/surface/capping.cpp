@@ -76,14 +76,6 @@ void mark_domain(CDT& cdt) {
   }
 }
 
-double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double l2 = dot(ab, ab);
-  double t = l2 > 0.0 ? dot(p - a, ab) / l2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return norm(p - (a + t * ab));
-}
-
 double boundary_distance(Vec2 p, const std::vector<std::vector<Vec2>>& loops) {
   double d = std::numeric_limits<double>::infinity();
   for (const auto& loop : loops)
