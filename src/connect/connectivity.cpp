@@ -11,24 +11,10 @@
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/errors.h"
 
+#include "../core/union_find_internal.h"
+
 namespace c4d {
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-};
 
 std::vector<Vec2> project(const Sequence& seq, const Slice& s, const Contour& c) {
   const Plane pl = slice_plane(seq, s);

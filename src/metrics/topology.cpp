@@ -19,6 +19,8 @@
 #include <CGAL/box_intersection_d.h>
 #include <fmt/format.h>
 
+#include "../core/union_find_internal.h"
+
 namespace c4d {
 namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -26,20 +28,6 @@ using Point = Kernel::Point_3;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
 
 Point to_point(Vec3 p) { return {p.x, p.y, p.z}; }
-
-struct UnionFind {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
-  std::size_t find(std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smallest index as root: deterministic
-  }
-};
 
 bool valid_triangle(const Triangle& t, std::size_t nv) {
   return t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];

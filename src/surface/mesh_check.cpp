@@ -12,18 +12,10 @@
 #include <iterator>
 #include <numeric>
 
+#include "../core/union_find_internal.h"
+
 namespace c4d {
 namespace {
-
-struct UnionFind {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
-  std::size_t find(std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
-};
 
 struct HalfEdge {
   std::uint32_t lo, hi;   // sorted endpoints

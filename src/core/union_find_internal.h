@@ -1,0 +1,28 @@
+#pragma once
+// Disjoint sets with path halving (private to the library). The smallest index of a set is its
+// root, so results never depend on the order of unions.
+#include <algorithm>
+#include <cstddef>
+#include <numeric>
+#include <vector>
+
+namespace c4d {
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  //! Joins the sets of a and b; false when they were already one.
+  bool unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    parent[std::max(a, b)] = std::min(a, b);
+    return true;
+  }
+};
+
+}  // namespace c4d
