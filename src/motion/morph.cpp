@@ -243,13 +243,18 @@ void add_far_point(const std::vector<Vec3>& verts, const Vec3& normal, std::vect
   dst.push_back(verts[best]);
 }
 
+// Projection of all vertices onto one frame's surface; each vertex remembers the triangle it last
+// landed on and starts its next search there (the vertices move little between passes). The hint
+// only narrows the search, so the result does not depend on the thread count.
 struct Projector {
   const SurfaceProjector& surface;
+  mutable std::vector<std::int32_t> hints;
   std::vector<Vec3> project(const std::vector<Vec3>& x, std::vector<Vec3>* normals = nullptr) const {
     std::vector<Vec3> p(x.size());
     if (normals) normals->resize(x.size());
+    hints.resize(x.size(), -1);
     tbb::parallel_for(std::size_t(0), x.size(), [&](std::size_t i) {
-      p[i] = surface.closest(x[i], normals ? &(*normals)[i] : nullptr);
+      p[i] = surface.closest(x[i], normals ? &(*normals)[i] : nullptr, &hints[i]);
     });
     return p;
   }
@@ -365,7 +370,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       // 2. Laplacian-regularised projection onto the frame's own surface; pinned vertices held on
       //    their contour points.
       const SurfaceProjector surface(surfaces[t]);
-      const Projector proj{surface};
+      const Projector proj{surface, {}};
       if (pinned != factored_for) {
         SparseMatrix W(static_cast<int>(nv), static_cast<int>(nv));
         std::vector<Eigen::Triplet<double>> w;

@@ -37,8 +37,24 @@ SurfaceProjector::SurfaceProjector(const TriangleMesh& s) : impl_(std::make_uniq
 SurfaceProjector::~SurfaceProjector() = default;
 
 Vec3 SurfaceProjector::closest(Vec3 p, Vec3* normal) const {
-  const auto hit = impl_->tree.closest_point_and_primitive(K::Point_3(p.x, p.y, p.z));
-  if (normal) *normal = impl_->normals[static_cast<std::size_t>(hit.second - impl_->triangles.begin())];
+  std::int32_t none = -1;
+  return closest(p, normal, &none);
+}
+
+Vec3 SurfaceProjector::closest(Vec3 p, Vec3* normal, std::int32_t* hint) const {
+  const K::Point_3 q(p.x, p.y, p.z);
+  Tree::Point_and_primitive_id hit;
+  const auto h = *hint;
+  if (h >= 0 && static_cast<std::size_t>(h) < impl_->triangles.size()) {
+    // The hint's own closest point bounds the search radius from the start (no k-d tree lookup).
+    const Iterator it = impl_->triangles.begin() + h;
+    hit = impl_->tree.closest_point_and_primitive(q, {K::Construct_projected_point_3()(*it, q), it});
+  } else {
+    hit = impl_->tree.closest_point_and_primitive(q);
+  }
+  const auto index = static_cast<std::size_t>(hit.second - impl_->triangles.begin());
+  *hint = static_cast<std::int32_t>(index);
+  if (normal) *normal = impl_->normals[index];
   return {hit.first.x(), hit.first.y(), hit.first.z()};
 }
 

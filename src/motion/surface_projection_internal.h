@@ -1,5 +1,6 @@
 #pragma once
 // Closest points on a triangle mesh (CGAL AABB tree); private to the motion stage.
+#include <cstdint>
 #include <memory>
 
 #include "contour4d/core/mesh.h"
@@ -14,6 +15,9 @@ class SurfaceProjector {
   SurfaceProjector& operator=(const SurfaceProjector&) = delete;
   //! Closest point of the surface to p; `normal` (if given) gets the unit normal of its triangle.
   Vec3 closest(Vec3 p, Vec3* normal = nullptr) const;
+  //! The same, starting the search from triangle `*hint` (a previous answer for a nearby query;
+  //! −1: none) and storing the triangle found there: a warm start for repeated projections.
+  Vec3 closest(Vec3 p, Vec3* normal, std::int32_t* hint) const;
 
  private:
   struct Impl;

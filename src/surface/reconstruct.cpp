@@ -554,6 +554,23 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   // No overshoot beyond the caps' height (at most half a spacing past the end contours).
   if (moved)
     for (Vec3& p : mesh.positions) p.z = std::clamp(p.z, lowest, highest);
+  // Fairing moved the free vertices, stretching triangles where it moved them most (bridges at
+  // branchings, domes): one isotropic remeshing of the whole faired surface, projected onto it, with
+  // every contour kept as a fixed chain of edges, evens them out across band and cap borders.
+  if (manifold && opt.remesh && !opt.rows && opt.final_remesh_iterations > 0) {
+    std::vector<std::array<std::uint32_t, 2>> constrained;
+    for (const Node& n : nodes)
+      for (std::size_t k = 0; k < n.chain.size(); ++k) {
+        const std::uint32_t a = n.chain[k], c = n.chain[(k + 1) % n.chain.size()];
+        constrained.push_back({std::min(a, c), std::max(a, c)});
+      }
+    RemeshOptions mo;
+    mo.edge = opt.edge;
+    mo.iterations = opt.final_remesh_iterations;
+    mo.split_constraints = false;
+    remesh_isotropic(mesh, constrained, fixed, mo);
+    flip_edges_delaunay(mesh, constrained);
+  }
 
   // Drop unused vertices (contours left without walls or caps when caps are open).
   std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);

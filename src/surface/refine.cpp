@@ -9,6 +9,9 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
 
 namespace c4d {
 namespace {
@@ -72,4 +75,76 @@ void remesh_isotropic(TriangleMesh& mesh, std::vector<std::array<std::uint32_t, 
   fixed = std::move(out_fixed);
 }
 
+namespace {
+
+double angle_at(const Vec3& p, const Vec3& q, const Vec3& r) {
+  const Vec3 u = q - p, w = r - p;
+  return std::atan2(norm(cross(u, w)), dot(u, w));
+}
+
+}  // namespace
+
+std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
+                                const FlipOptions& options) {
+  using Edge = std::pair<std::uint32_t, std::uint32_t>;
+  const std::set<Edge> fixed_edges = [&] {
+    std::set<Edge> s;
+    for (const auto& e : constrained) s.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
+    return s;
+  }();
+  // Directed edge a→b → triangle holding it.
+  std::map<Edge, std::size_t> owner;
+  auto& tris = mesh.triangles;
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) owner[{tris[t][k], tris[t][(k + 1) % 3]}] = t;
+  const auto& x = mesh.positions;
+  const double cos_dihedral = std::cos(options.max_dihedral_deg * 3.14159265358979323846 / 180.0);
+  auto third = [&](std::size_t t, std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t v : tris[t])
+      if (v != a && v != b) return v;
+    return a;
+  };
+  std::size_t flips = 0;
+  for (int round = 0; round < options.max_rounds; ++round) {
+    std::size_t flipped_now = 0;
+    // Deterministic order: undirected edges sorted by their vertex ids.
+    std::vector<Edge> edges;
+    for (const auto& [e, t] : owner)
+      if (e.first < e.second) edges.push_back(e);
+    for (const Edge& e : edges) {
+      const auto [a, b] = e;
+      if (fixed_edges.count(e)) continue;
+      const auto i1 = owner.find({a, b}), i2 = owner.find({b, a});
+      if (i1 == owner.end() || i2 == owner.end()) continue;  // boundary or already flipped away
+      const std::size_t t1 = i1->second, t2 = i2->second;
+      const std::uint32_t c = third(t1, a, b), d = third(t2, a, b);
+      if (c == d || owner.count({c, d}) || owner.count({d, c})) continue;
+      if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= 3.14159265358979323846 + 1e-9) continue;
+      const Vec3 n1 = cross(x[b] - x[a], x[c] - x[a]), n2 = cross(x[a] - x[b], x[d] - x[b]);
+      const double l1 = norm(n1), l2 = norm(n2);
+      // Near-flat triangles (normal undefined: twice the area below 2 % of the squared edge, about a
+      // 1° angle) always qualify; others only where the pair is nearly coplanar.
+      const double ab2 = dot(x[b] - x[a], x[b] - x[a]);
+      const bool flat1 = l1 <= 0.02 * ab2, flat2 = l2 <= 0.02 * ab2;
+      if (!flat1 && !flat2 && dot(n1, n2) < cos_dihedral * l1 * l2) continue;
+      if (flat1 && flat2) continue;
+      const Vec3 n = flat1 ? n2 / l2 : flat2 ? n1 / l1 : n1 / l1 + n2 / l2;
+      // New triangles (c,a,d) and (c,d,b) must face the same way as the pair did (no fold).
+      const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
+      if (dot(m1, n) <= 0 || dot(m2, n) <= 0) continue;
+      owner.erase({a, b});
+      owner.erase({b, a});
+      tris[t1] = {c, a, d};
+      tris[t2] = {c, d, b};
+      for (std::size_t t : {t1, t2})
+        for (int k = 0; k < 3; ++k) owner[{tris[t][k], tris[t][(k + 1) % 3]}] = t;
+      ++flipped_now;
+    }
+    flips += flipped_now;
+    if (flipped_now == 0) break;
+  }
+  return flips;
+}
+
 }  // namespace c4d
+

@@ -54,6 +54,28 @@ Vec2 point_at(const std::vector<Vec2>& p, const std::vector<double>& cum, double
   return p[k] + t * (p[(k + 1) % n] - p[k]);
 }
 
+// Removes needles: vertices where the contour turns back on itself (more than about 170°), as
+// hand-traced and pixel contours sometimes do (out one pixel and back along the same line). No
+// surface can pass through such a spike without flat triangles, and it encloses no area.
+std::vector<Vec2> without_spikes(std::vector<Vec2> p) {
+  for (bool changed = true; changed && p.size() > 3;) {
+    changed = false;
+    std::vector<Vec2> q;
+    const std::size_t n = p.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 u = p[i] - p[(i + n - 1) % n], w = p[(i + 1) % n] - p[i];
+      const double nu = norm(u), nw = norm(w);
+      if (nu > 0 && nw > 0 && dot(u, w) < -0.985 * nu * nw && n - (i - q.size()) > 3) {
+        changed = true;
+        continue;
+      }
+      q.push_back(p[i]);
+    }
+    p = dedupe(q);
+  }
+  return p;
+}
+
 }  // namespace
 
 int canonical_start(const std::vector<Vec2>& polygon) {
@@ -87,7 +109,7 @@ std::vector<Vec2> canonical_polygon(const std::vector<Vec2>& polygon, bool ccw) 
 }
 
 std::vector<Vec2> resample_closed(const std::vector<Vec2>& polygon, const ResampleOptions& options) {
-  const std::vector<Vec2> p = dedupe(polygon);
+  const std::vector<Vec2> p = without_spikes(dedupe(polygon));
   const std::size_t n = p.size();
   if (n < 3 || !(options.edge > 0)) return p;
   std::vector<double> cum(n + 1, 0.0);
@@ -99,15 +121,35 @@ std::vector<Vec2> resample_closed(const std::vector<Vec2>& polygon, const Resamp
   const bool keep_all = options.corner_angle_deg <= 0.0;
   const double scale = std::min(options.edge, total / 6.0);
   const double cos_limit = std::cos(options.corner_angle_deg * kPi / 180.0);
+  // Turning angle of every input vertex at that scale. A corner must also turn strictly more than
+  // every other vertex within one edge of it: on a tight bend (radius below about an edge) every
+  // vertex turns past the limit, and keeping them all would leave pieces far shorter than an edge
+  // (slivers against them); the bend is then sampled by the density below.
+  std::vector<double> turning(n, 0.0);
+  for (std::size_t i = 0; i < n && !keep_all; ++i) {
+    const Vec2 a = point_at(p, cum, cum[i] - scale), b = p[i], c = point_at(p, cum, cum[i] + scale);
+    const Vec2 u = b - a, w = c - b;
+    const double nu = norm(u), nw = norm(w);
+    if (nu > 0 && nw > 0) turning[i] = std::acos(std::clamp(dot(u, w) / (nu * nw), -1.0, 1.0));
+  }
+  const double turn_limit = std::acos(std::clamp(cos_limit, -1.0, 1.0));
+  auto local_maximum = [&](std::size_t i) {
+    for (int dir : {-1, 1})
+      for (std::size_t k = 1; k < n; ++k) {
+        const std::size_t j = (i + n + static_cast<std::size_t>(dir) * k) % n;
+        double gap = std::abs(cum[j] - cum[i]);
+        gap = std::min(gap, total - gap);
+        if (gap >= 0.5 * scale) break;
+        if (turning[j] >= turning[i]) return false;
+      }
+    return true;
+  };
   for (std::size_t i = 1; i < n; ++i) {
     if (keep_all) {
       kept.push_back(i);
       continue;
     }
-    const Vec2 a = point_at(p, cum, cum[i] - scale), b = p[i], c = point_at(p, cum, cum[i] + scale);
-    const Vec2 u = b - a, w = c - b;
-    const double nu = norm(u), nw = norm(w);
-    if (nu > 0 && nw > 0 && dot(u, w) / (nu * nw) < cos_limit) kept.push_back(i);
+    if (turning[i] > turn_limit && local_maximum(i)) kept.push_back(i);
   }
   // Point density (points per mm) at each input vertex: 1/edge on straight parts, more where the
   // contour bends so that the chord deviation e²κ/8 stays within the tolerance.

@@ -9,6 +9,7 @@
 
 #include "contour4d/core/contour.h"
 #include "contour4d/surface/capping.h"
+#include "contour4d/surface/refine.h"
 #include "contour4d/surface/resample.h"
 
 namespace {
@@ -87,6 +88,50 @@ TEST(Resample, CornersAreKept) {
   const auto r = c4d::resample_closed(square, {1.5, 30.0});
   for (const Vec2& c : square) EXPECT_NE(std::find(r.begin(), r.end(), c), r.end());
   EXPECT_EQ(r.size(), 28u);  // 4 sides of 10 mm in 7 pieces
+}
+
+TEST(Resample, ATightBendIsNotAChainOfCorners) {
+  // A peanut-like section: two circles of radius 8 joined by a dimple of radius 1 mm, sampled every
+  // 0.05 mm. Every vertex of the dimple turns more than 30° at the scale of one edge; only the
+  // sharpest may be kept, so pieces stay a good part of an edge long.
+  std::vector<Vec2> p;
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < 2000; ++k) {
+    const double t = 2 * pi * k / 2000;
+    const double r = 8.0 - 5.0 * std::exp(-std::pow(std::sin(t) / 0.12, 2));  // dimples at t = 0, π
+    p.push_back({r * std::cos(t) * 1.6, r * std::sin(t)});
+  }
+  c4d::ResampleOptions o;
+  o.edge = 1.25;
+  const auto r = c4d::resample_closed(c4d::canonical_polygon(p, true), o);
+  double shortest = 1e9;
+  for (std::size_t k = 0; k < r.size(); ++k) shortest = std::min(shortest, c4d::norm(r[(k + 1) % r.size()] - r[k]));
+  EXPECT_GT(shortest, 0.2 * o.edge) << r.size() << " points";  // every input vertex kept: 0.05 mm
+}
+
+TEST(Resample, NeedlesAreRemoved) {
+  // A square with a one-pixel needle out of its top side and back along the same line.
+  const std::vector<Vec2> spiky{{0, 0}, {10, 0}, {10, 10}, {5, 10}, {5, 12}, {5, 10}, {0, 10}};
+  const auto r = c4d::resample_closed(spiky, {1.0, 30.0});
+  for (const Vec2& q : r) EXPECT_LE(q.y, 10.0 + 1e-12);
+  EXPECT_NEAR(std::abs(c4d::signed_area(r)), 100.0, 1e-9);
+}
+
+TEST(Refine, FlipsRemoveAFlatTriangleAndKeepContourEdges) {
+  // A fan cap whose first triangle has three collinear contour vertices (0, 1, 2); the loop
+  // 0-1-2-3-4 is the contour (constrained).
+  c4d::TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}};
+  const std::vector<std::array<std::uint32_t, 2>> contour{{0, 1}, {1, 2}, {2, 3}, {3, 4}, {0, 4}};
+  EXPECT_GE(c4d::flip_edges_delaunay(m, contour), 1u);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : m.triangles) {
+    const Vec3 n = c4d::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+    EXPECT_GT(n.z, 1e-9) << "flat or flipped triangle";
+    for (int k = 0; k < 3; ++k) ++edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+  }
+  for (const auto& e : contour) EXPECT_EQ(edges[std::make_pair(e[0], e[1])], 1) << e[0] << "-" << e[1];
 }
 
 TEST(Capping, CapCoversTheRegionAndKeepsLoopEdges) {

@@ -27,6 +27,9 @@ struct SurfaceOptions {
                                  //!< remeshing (about 5× faster, fewer well-shaped triangles on real contours)
   bool remesh = true;            //!< isotropic remeshing (CGAL) of the bands without rows (branchings; all bands when rows = false)
   int remesh_iterations = 5;     //!< remeshing rounds
+  int final_remesh_iterations = 3;  //!< isotropic remeshing rounds of the whole faired surface, contours kept as
+                                    //!< fixed chains of edges (evens out triangles that fairing stretched at
+                                    //!< branchings and caps); 0: none. Not done when rows = true
   bool fairing = true;           //!< thin-plate fairing with the contours fixed: smooth across contours (fairing.h)
   double cap_shape_weight = 0.0; //!< fairing weight keeping the initial Rounded dome shape (0: the dome is faired freely and continues the wall; its tip is still clamped to cap_height)
   int smoothing_iterations = 0;  //!< λ|μ|ε pass pairs after fairing (0: none); contour vertices fixed

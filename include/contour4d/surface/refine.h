@@ -27,4 +27,17 @@ struct RemeshOptions {
 void remesh_isotropic(TriangleMesh& mesh, std::vector<std::array<std::uint32_t, 2>>& constrained,
                       std::vector<char>& fixed, const RemeshOptions& options = {});
 
+//! Options of flip_edges_delaunay.
+struct FlipOptions {
+  double max_dihedral_deg = 20.0;  //!< only flip where the two triangles are this close to coplanar (keeps the shape)
+  int max_rounds = 20;             //!< passes over all edges at most
+};
+
+//! Flips every edge whose two opposite angles sum to more than 180° (the local Delaunay test, on the
+//! surface) where the two triangles are nearly coplanar and the flip folds nothing; constrained edges
+//! (contours) are never flipped. Removes flat triangles left between three consecutive contour
+//! vertices and raises the smallest angles; vertex positions do not change. Returns the flips made.
+std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
+                                const FlipOptions& options = {});
+
 }  // namespace c4d
