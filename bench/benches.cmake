@@ -3,6 +3,7 @@ add_executable(extract_bench ${CMAKE_CURRENT_LIST_DIR}/extract_bench.cpp)
 target_link_libraries(extract_bench PRIVATE benchmark::benchmark contour4d TBB::tbb)
 c4d_set_warnings(extract_bench)
 # Tables I and II of Miara et al.: compact model size and classical-vs-compact playback (issue 6).
+# Table I against per-frame marching cubes meshes: bench/storage_table.sh (a script, not a target).
 if(TARGET contour4d_render OR OpenGL_EGL_FOUND)
   add_executable(playback_bench playback_bench.cpp)
   target_link_libraries(playback_bench PRIVATE contour4d contour4d_render)

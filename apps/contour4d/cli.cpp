@@ -11,6 +11,9 @@
 
 namespace c4d::cli {
 
+// `contour4d view` (cmd_view.cpp); declared here because cli.h is shared by all subcommand owners.
+void add_view_command(CLI::App& root, std::vector<Command>& commands);
+
 bool stdout_is_terminal() { return isatty(fileno(stdout)) != 0; }
 
 int run(int argc, char** argv) {
@@ -34,6 +37,7 @@ int run(int argc, char** argv) {
   add_pack_command(root, commands);
   add_unpack_command(root, commands);
   add_render_command(root, commands);
+  add_view_command(root, commands);
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -26,6 +26,7 @@ struct PackArgs {
   std::size_t controls = 600;
   std::size_t resample = 0;
   std::string interp = "catmull-rom";
+  std::string error = "vertex";
   bool no_gltf = false;
   bool gltf_step = false;
 };
@@ -46,6 +47,7 @@ int run_pack(const PackArgs& a) {
   CompactOptions opt;
   opt.tolerance = a.tolerance;
   opt.control_vertices = a.controls;
+  opt.error = a.error == "surface" ? CompactError::Surface : CompactError::Vertex;
   CompactStats st;
   const CompactModel model = compact_encode(seq, opt, nullptr, &st);
   const std::string bytes = serialize_model_c4d(model);
@@ -63,8 +65,9 @@ int run_pack(const PackArgs& a) {
                            "corrections {} B ({} vertex-frames)\n",
                            st.index_bytes, st.position_bytes, st.motion_bytes, model.control.size(), st.correction_bytes,
                            st.corrected_vertices)
-            << fmt::format("  error vs input: max {:.4f} mm, RMS {:.4f} mm (tolerance {} mm)\n", st.max_error,
-                           st.rms_error, a.tolerance)
+            << fmt::format("  error vs input: vertex to same vertex max {:.4f} mm, RMS {:.4f} mm; vertex to surface max "
+                           "{:.4f} mm, input vertex to decoded surface max {:.4f} mm (tolerance {} mm on {})\n",
+                           st.max_error, st.rms_error, st.max_surface_error, st.max_surface_error_back, a.tolerance, a.error)
             << fmt::format("  per-frame meshes: VTP {:.0f} B ({:.0f}x larger), binary PLY {:.0f} B ({:.0f}x larger)\n", vtp,
                            vtp / static_cast<double>(bytes.size()), ply, ply / static_cast<double>(bytes.size()));
   if (!a.no_gltf) {
@@ -108,11 +111,17 @@ void add_pack_command(CLI::App& root, std::vector<Command>& commands) {
       "Examples:\n"
       "  contour4d pack out                         # out/model.c4d + out/model.glb\n"
       "  contour4d pack out --tolerance 0.02 -o lv.c4d\n"
+      "  contour4d pack out --error surface            # Table I: 0.05 mm to the surface, vertices may slide\n"
       "  contour4d pack out --resample 60 --interp catmull-rom   # 60 frames over the cycle\n");
   auto args = std::make_shared<PackArgs>();
   app->add_option("INPUT", args->input, "output folder of a reconstruction (mesh.pvd, frames/) or a model.c4d")->required();
   app->add_option("-o,--output", args->output, "model file (default INPUT/model.c4d); the .glb goes beside it");
   app->add_option("--tolerance", args->tolerance, "max error of any vertex in any frame (mm)")->default_val(0.05)->check(CLI::PositiveNumber);
+  app->add_option("--error", args->error,
+                  "what --tolerance bounds: vertex (each decoded vertex vs the same input vertex; exact "
+                  "correspondence) or surface (decoded vertex vs the input surface; vertices may slide along it)")
+      ->check(CLI::IsMember({"vertex", "surface"}))
+      ->default_val("vertex");
   app->add_option("--controls", args->controls, "number of control vertices carrying the motion")->default_val(600);
   app->add_option("--resample", args->resample, "resample to N frames before packing (0: keep)")->default_val(0);
   app->add_option("--interp", args->interp, "interpolation for --resample")->check(CLI::IsMember({"linear", "catmull-rom", "step"}))->default_val("catmull-rom");

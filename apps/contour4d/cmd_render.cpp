@@ -15,6 +15,7 @@
 #include "contour4d/io/model_c4d.h"
 #include "contour4d/io/output_dir.h"
 #include "contour4d/temporal/compact.h"
+#include "contour4d/temporal/displacement_map.h"
 #include "contour4d/temporal/interpolate.h"
 #include "contour4d/temporal/sequence.h"
 #ifdef C4D_HAVE_RENDER
@@ -33,6 +34,11 @@ struct RenderArgs {
   bool classical = false;
   bool perspective = false;
   int bench = 0;
+  bool tessellated = false;
+  int level = 6;
+  int grid = 8;
+  std::size_t base_triangles = 2000;
+  bool wireframe = false;
 };
 
 int run_render(const RenderArgs& a) {
@@ -49,7 +55,7 @@ int run_render(const RenderArgs& a) {
     seq = compact_decode(model);
   } else {
     seq = load_mesh_sequence(in);
-    model = compact_encode(seq);
+    if (!a.tessellated || a.bench > 0) model = compact_encode(seq);
   }
   RenderOptions opt;
   if (std::sscanf(a.size.c_str(), "%dx%d", &opt.width, &opt.height) != 2)
@@ -87,6 +93,33 @@ int run_render(const RenderArgs& a) {
   }
   if (a.output.empty()) throw InvalidInput(ErrorCode::Usage, {}, "no output folder", "pass -o DIR");
   const std::size_t count = a.frames > 0 ? a.frames : nf;
+  if (a.tessellated) {  // the viewer's pipeline: base mesh + displacement maps, tessellation shaders
+    PatchOptions po;
+    po.grid = a.grid;
+    po.base_triangles = a.base_triangles;
+    const PatchMesh pm = build_patch_mesh(seq, po);
+    if (a.classical) {  // the same displaced patches tessellated on the CPU, drawn as plain meshes
+      r.load_classical(tessellate_patches(pm, a.level));
+    } else {
+      r.patches().load(pm);
+    }
+    PatchDrawState st;
+    st.level = a.level;
+    st.wireframe = a.wireframe;
+    st.interpolation = opt.interpolation;
+    OutputDir out(a.output);
+    const double period = cycle_period(seq.times_ms);
+    for (std::size_t i = 0; i < count; ++i) {
+      st.t_ms = a.frames > 0 ? seq.times_ms.front() + period * static_cast<double>(i) / static_cast<double>(count)
+                             : seq.times_ms[i];
+      if (a.classical) r.draw_classical(i % nf); else r.draw_patches(st);
+      write_png(out.path(fmt::format("frame_{:03d}.png", i)), r.read_image());
+    }
+    out.commit();
+    std::cout << fmt::format("wrote {} tessellated frames ({}x{}, base {} triangles, level {}) to {}\n", count, opt.width,
+                             opt.height, pm.triangles.size(), a.level, a.output);
+    return 0;
+  }
   if (a.classical) r.load_classical(seq); else r.load_compact(model);
   OutputDir out(a.output);
   const double period = cycle_period(seq.times_ms);
@@ -118,6 +151,7 @@ void add_render_command(CLI::App& root, std::vector<Command>& commands) {
       "Examples:\n"
       "  contour4d render out -o pngs                      # one PNG per frame\n"
       "  contour4d render out/model.c4d -o movie --frames 100 --interp catmull-rom\n"
+      "  contour4d render out -o tess --tessellated --level 6 --wireframe   # what `contour4d view` shows\n"
       "  LIBGL_ALWAYS_SOFTWARE=1 contour4d render out --bench 50   # Table II: ms and bytes per frame\n");
   auto args = std::make_shared<RenderArgs>();
   app->add_option("INPUT", args->input, "output folder of a reconstruction or a model.c4d")->required();
@@ -125,8 +159,16 @@ void add_render_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_option("--frames", args->frames, "number of images evenly over the cycle (0: one per frame)")->default_val(0);
   app->add_option("--size", args->size, "image size WIDTHxHEIGHT")->default_val("640x480");
   app->add_option("--interp", args->interp, "interpolation between frames")->check(CLI::IsMember({"linear", "catmull-rom", "step"}))->default_val("linear");
-  app->add_flag("--classical", args->classical, "upload each frame's mesh instead of the compact GPU path");
+  app->add_flag("--classical", args->classical,
+                "upload each frame's mesh instead of the compact GPU path (with --tessellated: the patches "
+                "tessellated on the CPU)");
   app->add_flag("--perspective", args->perspective, "perspective camera (default orthographic)");
+  app->add_flag("--tessellated", args->tessellated,
+                "draw through the viewer's tessellation shaders (base mesh + displacement maps, PN patches)");
+  app->add_option("--level", args->level, "tessellation level with --tessellated (1..64)")->default_val(6)->check(CLI::Range(1, 64));
+  app->add_option("--grid", args->grid, "displacement map lattice steps per base edge")->default_val(8)->check(CLI::Range(1, 64));
+  app->add_option("--base-triangles", args->base_triangles, "triangles of the coarse base mesh")->default_val(2000);
+  app->add_flag("--wireframe", args->wireframe, "with --tessellated: draw the tessellated edges");
   app->add_option("--bench", args->bench, "draw N frames with each path and report ms and bytes per frame")->default_val(0);
   commands.push_back({app, [args] { return run_render(*args); }});
 }

@@ -113,7 +113,7 @@ std::string serialize_model_c4d(const CompactModel& m) {
 
   std::string out(kMagic, 8);
   put_u32(out, kModelC4dVersion);
-  put_u32(out, 0);  // flags, reserved
+  put_u32(out, m.error == CompactError::Surface ? 1u : 0u);  // flags: bit 0 = surface corrections
   put_u64(out, p.size());
   put_u64(out, fnv1a64(p));
   out += p;
@@ -126,11 +126,14 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
                   "pass a model.c4d written by `contour4d pack`");
   Reader h{bytes, 8, name};
   const std::uint32_t version = h.u32();
-  if (version != kModelC4dVersion)
+  if (version != 1 && version != kModelC4dVersion)
     throw IoError(ErrorCode::Format, {name}, "model.c4d version " + std::to_string(version) + " is not supported (this build reads " +
                       std::to_string(kModelC4dVersion) + ")",
                   "pack the 4D mesh again with this contour4d");
-  h.u32();
+  const std::uint32_t flags = h.u32();
+  if (flags > (version >= 2 ? 1u : 0u))
+    throw IoError(ErrorCode::Format, {name}, "model.c4d flags " + std::to_string(flags) + " are not supported",
+                  "pack the 4D mesh again with this contour4d");
   const std::uint64_t size = h.u(8);
   const std::uint64_t sum = h.u(8);
   if (size != bytes.size() - kHeader)
@@ -141,6 +144,7 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
     throw IoError(ErrorCode::Parse, {name}, "checksum mismatch", "the file is damaged: run `contour4d pack` again");
   Reader r{payload, 0, name};
   CompactModel m;
+  m.error = (flags & 1u) ? CompactError::Surface : CompactError::Vertex;
   m.vertex_count = r.u32();
   m.triangle_count = r.u32();
   m.frame_count = r.u32();

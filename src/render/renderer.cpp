@@ -131,6 +131,7 @@ struct OffscreenRenderer::Impl {
   std::size_t nc = 0;
   Mat4 mv{}, proj{};
   Vec3 center{};
+  std::unique_ptr<PatchRenderer> patches;  // created on first use, destroyed before the context
 
   void fit_camera(const std::vector<std::vector<Vec3>>& all) {
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
@@ -251,6 +252,7 @@ OffscreenRenderer::OffscreenRenderer(const RenderOptions& options) : impl_(std::
 OffscreenRenderer::~OffscreenRenderer() {
   Impl& s = *impl_;
   if (s.ctx != EGL_NO_CONTEXT) {
+    s.patches.reset();
     s.reset_buffers();
     glDeleteVertexArrays(1, &s.vao);
     glDeleteProgram(s.classical_prog);
@@ -403,6 +405,20 @@ std::size_t OffscreenRenderer::draw_compact(double t_ms) {
   glUniform4fv(glGetUniformLocation(s.compact_prog, "fw"), 1, fw);
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.index_count), GL_UNSIGNED_INT, nullptr);
   return sizeof fr + sizeof fw;
+}
+
+PatchRenderer& OffscreenRenderer::patches() {
+  Impl& s = *impl_;
+  if (!s.patches) s.patches = std::make_unique<PatchRenderer>();
+  return *s.patches;
+}
+
+std::size_t OffscreenRenderer::draw_patches(PatchDrawState state) {
+  Impl& s = *impl_;
+  state.width = s.opt.width;
+  state.height = s.opt.height;
+  glBindFramebuffer(GL_FRAMEBUFFER, s.fbo);
+  return patches().draw(state);
 }
 
 void OffscreenRenderer::finish() { glFinish(); }

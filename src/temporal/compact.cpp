@@ -25,6 +25,7 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/errors.h"
+#include "vertex_normals_internal.h"
 
 namespace c4d {
 namespace {
@@ -88,6 +89,64 @@ void predict(const std::vector<Vec3>& base, const ControlWeights& w, const std::
     for (std::size_t j = 0; j < k; ++j) d += static_cast<double>(w.weights[v * k + j]) * control_disp[w.ids[v * k + j]];
     out[v] = base[v] + d;
   }
+}
+
+// Closest-point distance from p to triangle abc (Ericson, Real-Time Collision Detection §5.1.5).
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return norm(ap);
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return norm(bp);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return distance(p, a + (d1 / (d1 - d3)) * ab);
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return norm(cp);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return distance(p, a + (d2 / (d2 - d6)) * ac);
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return distance(p, b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b));
+  const double den = va + vb + vc;
+  if (!(std::abs(den) > 0)) return std::min({norm(ap), norm(bp), norm(cp)});  // degenerate triangle
+  return distance(p, a + (vb / den) * ab + (vc / den) * ac);
+}
+
+// Triangles within two rings of every vertex (CSR): the part of a frame's surface a vertex may
+// slide over. A distance to this subset bounds the distance to the whole surface from above.
+struct TriangleRings {
+  std::vector<std::uint32_t> start, tris;
+};
+
+TriangleRings triangle_rings(std::size_t nv, const std::vector<Triangle>& triangles) {
+  std::vector<std::vector<std::uint32_t>> incident(nv);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (std::uint32_t v : triangles[t]) incident[v].push_back(static_cast<std::uint32_t>(t));
+  TriangleRings r;
+  r.start.push_back(0);
+  std::vector<std::uint32_t> set;
+  for (std::size_t v = 0; v < nv; ++v) {
+    set.clear();
+    for (std::uint32_t t : incident[v])
+      for (std::uint32_t u : triangles[t]) set.insert(set.end(), incident[u].begin(), incident[u].end());
+    std::sort(set.begin(), set.end());
+    set.erase(std::unique(set.begin(), set.end()), set.end());
+    r.tris.insert(r.tris.end(), set.begin(), set.end());
+    r.start.push_back(static_cast<std::uint32_t>(r.tris.size()));
+  }
+  return r;
+}
+
+double ring_distance(const TriangleRings& r, const std::vector<Triangle>& triangles, const std::vector<Vec3>& surface,
+                     std::size_t v, const Vec3& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::uint32_t i = r.start[v]; i < r.start[v + 1]; ++i) {
+    const Triangle& t = triangles[r.tris[i]];
+    best = std::min(best, point_triangle_distance(p, surface[t[0]], surface[t[1]], surface[t[2]]));
+  }
+  return best;
 }
 
 std::vector<Vec3> decode_positions(const CompactModel& m) {
@@ -278,19 +337,46 @@ CompactModel compact_encode(const MeshSequence& seq_in, const CompactOptions& op
   const ControlWeights w = control_weights(base, m.control, static_cast<int>(m.neighbours));
   CompactStats st;
   double sum2 = 0.0;
-  std::vector<Vec3> pred;
+  m.error = opt.error;
+  const bool surface = opt.error == CompactError::Surface;
+  // The triangles as the decoder will see them (the index codec may rotate corners), so that both
+  // compute the same normals.
+  std::vector<std::uint32_t> didx(idx.size());
+  if (meshopt_decodeIndexBuffer(didx.data(), didx.size(), 4, m.indices.data(), m.indices.size()) != 0)
+    bad("index codec round trip failed", "report this as a bug");
+  std::vector<Triangle> tris(didx.size() / 3);
+  for (std::size_t t = 0; t < tris.size(); ++t) tris[t] = {didx[3 * t], didx[3 * t + 1], didx[3 * t + 2]};
+  const TriangleRings rings = triangle_rings(nv, tris);
+  std::vector<Vec3> pred, normals;
   for (std::size_t f = 0; f < nf; ++f) {
     const std::vector<Vec3> disp = decode_motion(m, f);
     predict(base, w, disp, pred);
+    if (surface) normals = area_weighted_normals(pred, tris, Vec3{});
     std::vector<std::uint8_t> corr;
     std::vector<std::uint8_t> body;
     std::uint64_t count = 0;
     std::size_t last = 0;
+    const double accept = 0.9 * opt.tolerance;  // margin for floating-point differences between machines
     for (std::size_t v = 0; v < nv; ++v) {
-      if (distance(pred[v], P[f][v]) <= 0.9 * opt.tolerance) continue;
+      if (surface) {
+        if (ring_distance(rings, tris, P[f], v, pred[v]) <= accept) continue;
+        // One scalar along the predicted normal when that brings the vertex onto the surface.
+        const std::int64_t r = std::llround(dot(P[f][v] - pred[v], normals[v]) / m.residual_step);
+        const Vec3 cand = pred[v] + (static_cast<double>(r) * m.residual_step) * normals[v];
+        if (r != 0 && ring_distance(rings, tris, P[f], v, cand) <= accept) {
+          put_varint(body, 2 * (v - last));
+          put_varint(body, zigzag(r));
+          pred[v] = cand;
+          last = v;
+          ++count;
+          continue;
+        }
+      } else if (distance(pred[v], P[f][v]) <= accept) {
+        continue;
+      }
       std::array<std::int64_t, 3> r{};
       for (int i = 0; i < 3; ++i) r[i] = std::llround((P[f][v][i] - pred[v][i]) / m.residual_step);
-      put_varint(body, v - last);
+      put_varint(body, surface ? 2 * (v - last) + 1 : v - last);
       last = v;
       for (int i = 0; i < 3; ++i) {
         put_varint(body, zigzag(r[i]));
@@ -306,6 +392,8 @@ CompactModel compact_encode(const MeshSequence& seq_in, const CompactOptions& op
       const double e = distance(pred[v], P[f][v]);
       st.max_error = std::max(st.max_error, e);
       sum2 += e * e;
+      st.max_surface_error = std::max(st.max_surface_error, ring_distance(rings, tris, P[f], v, pred[v]));
+      st.max_surface_error_back = std::max(st.max_surface_error_back, ring_distance(rings, tris, pred, v, P[f][v]));
     }
   }
   st.rms_error = std::sqrt(sum2 / static_cast<double>(nv * nf));
@@ -347,21 +435,30 @@ MeshSequence compact_decode(const CompactModel& m) {
     bad("corrupt motion stream", "the file is damaged: pack it again");
   seq.times_ms = m.times_ms;
   seq.positions.resize(m.frame_count);
-  std::vector<Vec3> disp(nc);
+  const bool surface = m.error == CompactError::Surface;
+  std::vector<Vec3> disp(nc), normals;
   for (std::size_t f = 0; f < m.frame_count; ++f) {
     for (std::size_t c = 0; c < nc; ++c) {
       const std::size_t r = (c * m.frame_count + f) * 4;
       disp[c] = {q[r] * m.motion_step, q[r + 1] * m.motion_step, q[r + 2] * m.motion_step};
     }
     predict(base, w, disp, seq.positions[f]);
+    if (surface) normals = area_weighted_normals(seq.positions[f], seq.triangles, Vec3{});
     const std::vector<std::uint8_t>& corr = m.corrections[f];
     std::size_t pos = 0;
     const std::uint64_t count = get_varint(corr, pos);
     if (count > m.vertex_count) bad("too many corrections", "the file is damaged: pack it again", static_cast<int>(f));
     std::uint64_t v = 0;
     for (std::uint64_t i = 0; i < count; ++i) {
-      v += get_varint(corr, pos);
+      const std::uint64_t code = get_varint(corr, pos);
+      const bool full = !surface || (code & 1) != 0;
+      v += surface ? code >> 1 : code;
       if (v >= m.vertex_count) bad("correction vertex out of range", "the file is damaged: pack it again", static_cast<int>(f));
+      if (!full) {
+        const double r = static_cast<double>(unzigzag(get_varint(corr, pos))) * m.residual_step;
+        seq.positions[f][v] += r * normals[v];
+        continue;
+      }
       for (int c = 0; c < 3; ++c)
         seq.positions[f][v][c] += static_cast<double>(unzigzag(get_varint(corr, pos))) * m.residual_step;
     }

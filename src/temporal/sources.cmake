@@ -1,5 +1,6 @@
 # Sources of the temporal stage (paths relative to src/).
 target_sources(contour4d PRIVATE
   temporal/compact.cpp
+  temporal/displacement_map.cpp
   temporal/interpolate.cpp
   temporal/sequence.cpp)

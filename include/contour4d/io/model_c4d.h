@@ -12,8 +12,9 @@
 
 namespace c4d {
 
-//! Current format version written by serialize_model_c4d.
-constexpr std::uint32_t kModelC4dVersion = 1;
+//! Current format version written by serialize_model_c4d (2: header flag bit 0 = surface
+//! corrections, CompactError::Surface). Version 1 files are read too.
+constexpr std::uint32_t kModelC4dVersion = 2;
 
 //! FNV-1a 64-bit hash of a byte string (the file's checksum).
 std::uint64_t fnv1a64(std::string_view bytes);

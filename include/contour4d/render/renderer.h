@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "contour4d/core/mesh.h"
+#include "contour4d/render/patch_renderer.h"
 #include "contour4d/temporal/compact.h"
 #include "contour4d/temporal/interpolate.h"
 
@@ -60,6 +61,13 @@ class OffscreenRenderer {
   void load_compact(const CompactModel& model);
   //! Draws the compact model at time t (ms): one uniform set; returns the bytes uploaded (the uniform).
   std::size_t draw_compact(double t_ms);
+
+  //! Tessellation path: the pipeline of the viewer (render/patch_renderer.h) in this context; load
+  //! it with patches().load(...) once, then draw_patches per frame.
+  PatchRenderer& patches();
+  //! Draws through the tessellation shaders into the offscreen framebuffer (the state's viewport
+  //! is set to the image size). Returns the bytes uploaded (uniforms).
+  std::size_t draw_patches(PatchDrawState state);
 
   //! Waits for the GPU and reads the framebuffer.
   Image read_image();

@@ -12,7 +12,10 @@
 //!    from the decoded frame 0 (not stored: encoder and decoder compute the same ones);
 //!  - per frame, sparse corrections for the vertices whose interpolated position is farther than
 //!    `tolerance` mm from the true one, quantised at `residual_step`.
-//! Every decoded vertex is within `tolerance` mm (Euclidean) of the input, in every frame.
+//! With CompactError::Vertex every decoded vertex is within `tolerance` mm (Euclidean) of the same
+//! input vertex, in every frame. With CompactError::Surface every decoded vertex is within
+//! `tolerance` mm of the input frame's surface (its triangles around that vertex): motion along the
+//! surface is free, most corrections are one scalar along the predicted vertex normal.
 
 #include <cstdint>
 #include <vector>
@@ -21,12 +24,19 @@
 
 namespace c4d {
 
+//! What the encoder's tolerance bounds.
+enum class CompactError {
+  Vertex,   //!< distance of each decoded vertex to the same input vertex (keeps correspondence exact)
+  Surface,  //!< distance of each decoded vertex to the input surface (Hausdorff-style, smaller file)
+};
+
 //! Options of compact_encode.
 struct CompactOptions {
   double tolerance = 0.05;          //!< max distance (mm) between decoded and input vertex, any frame
   std::size_t control_vertices = 600;  //!< target number of control vertices carrying the motion
   int neighbours = 8;               //!< control vertices per fine vertex in the interpolation
   bool reorder = true;              //!< reorder vertices and triangles for compression (permutes ids)
+  CompactError error = CompactError::Vertex;  //!< what `tolerance` bounds
 };
 
 //! Number of control vertices a fine vertex's weights refer to (CompactModel::neighbours).
@@ -45,12 +55,14 @@ struct CompactModel {
   double residual_step = 0.0;               //!< correction quantum (mm)
   double tolerance = 0.0;                   //!< the bound the encoder guaranteed (mm)
   std::uint32_t neighbours = 0;             //!< control vertices per fine vertex
+  CompactError error = CompactError::Vertex;  //!< Surface: corrections may be scalars along the normal
   std::vector<std::uint8_t> indices;        //!< meshopt_encodeIndexBuffer of the triangles
   std::vector<std::uint8_t> positions;      //!< meshopt_encodeVertexBuffer of uint16 x,y,z,0 (grid units)
   std::vector<std::uint32_t> control;       //!< ids of the control vertices, increasing
   std::vector<std::uint8_t> motion;         //!< meshopt_encodeVertexBuffer of int16 x,y,z,0 per
                                             //!< (control vertex, frame), control-major
   std::vector<std::vector<std::uint8_t>> corrections;  //!< per frame: varint-coded sparse corrections
+                                                       //!< (Surface: gap·2 + full flag, then 3 or 1 values)
 };
 
 //! Sizes of the parts of an encoded model and its error, for reports (bytes, mm).
@@ -60,8 +72,10 @@ struct CompactStats {
   std::size_t motion_bytes = 0;
   std::size_t correction_bytes = 0;
   std::size_t corrected_vertices = 0;  //!< corrections over all frames
-  double max_error = 0.0;              //!< max distance decoded vs input (mm), all frames
+  double max_error = 0.0;              //!< max distance decoded vs input vertex (mm), all frames
   double rms_error = 0.0;              //!< RMS of that distance (mm)
+  double max_surface_error = 0.0;      //!< max distance decoded vertex to input surface (mm)
+  double max_surface_error_back = 0.0; //!< max distance input vertex to decoded surface (mm)
 };
 
 //! Encodes a mesh sequence. With options.reorder the model's vertex i is input vertex
