@@ -115,6 +115,7 @@ void BM_ExtractAllLabels(benchmark::State& state) { run(state, preset({})); }
 void BM_ExtractLV(benchmark::State& state) { run(state, preset({"lv"})); }
 void BM_ExtractLVRawStaircase(benchmark::State& state) {
   MaskExtractOptions o = preset({"lv"});
+  o.staircase = c4d::StaircaseSmoothing::None;
   o.taubin_passes = 0;
   o.resample_mm = 0;
   run(state, o);

@@ -11,9 +11,6 @@
 
 namespace c4d::cli {
 
-// `contour4d view` (cmd_view.cpp); declared here because cli.h is shared by all subcommand owners.
-void add_view_command(CLI::App& root, std::vector<Command>& commands);
-
 bool stdout_is_terminal() { return isatty(fileno(stdout)) != 0; }
 
 int run(int argc, char** argv) {

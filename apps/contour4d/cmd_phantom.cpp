@@ -1,5 +1,7 @@
 // `contour4d phantom`: writes an analytic phantom's contours and its true surface (docs/phantoms.md).
 #include <cmath>
+#include <filesystem>
+#include <unistd.h>
 #include <iostream>
 #include <limits>
 
@@ -11,7 +13,9 @@
 #include "contour4d/io/contours_json.h"
 #include "contour4d/io/mesh_output.h"
 #include "contour4d/io/output_dir.h"
+#include "contour4d/io/images.h"
 #include "contour4d/phantoms/phantom.h"
+#include "contour4d/phantoms/rasterize.h"
 
 namespace c4d::cli {
 
@@ -22,6 +26,9 @@ struct PhantomArgs {
   std::string out;
   bool list = false;
   PhantomOptions options;
+  std::string mask;                   // label image to write ("" = none)
+  std::vector<double> mask_spacing;   // X,Y (in-plane voxel size, mm) or X,Y,Z (Z sets the slice spacing)
+  int mask_label = 1;
 };
 
 std::string catalogue_text() {
@@ -64,14 +71,53 @@ std::string truth_json(const Phantom& ph, const PhantomOptions& o) {
   return j.dump(2) + "\n";
 }
 
+// ITK writes in place: write beside the target under a temporary name (same extension), then rename.
+void write_mask_atomic(const std::string& file, const std::vector<LabelVolume>& mask) {
+  namespace fs = std::filesystem;
+  const fs::path target(file);
+  const fs::path tmp = target.parent_path() / (".c4d-tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
+  try {
+    write_label_volume(tmp, mask);
+    fs::rename(tmp, target);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
+}
+
 int run_phantom(const PhantomArgs& a) {
   if (a.list || a.name.empty()) {
     std::cout << "Phantoms:\n" << catalogue_text();
     if (!a.list) throw InvalidInput(ErrorCode::Usage, {}, "no phantom named", "give a name, e.g. `contour4d phantom left-heart -o lh`");
     return 0;
   }
-  if (a.out.empty()) throw InvalidInput(ErrorCode::Usage, {}, "no output folder", "give -o DIR");
-  const Phantom ph = make_phantom(a.name, a.options);
+  if (a.out.empty() && a.mask.empty())
+    throw InvalidInput(ErrorCode::Usage, {}, "no output", "give -o DIR and/or --mask FILE.nii.gz");
+  PhantomOptions po = a.options;
+  RasterizeOptions ro;
+  ro.label = a.mask_label;
+  if (!a.mask_spacing.empty()) {
+    if (a.mask_spacing.size() != 2 && a.mask_spacing.size() != 3)
+      throw InvalidInput(ErrorCode::Usage, {}, "--mask-spacing takes X,Y or X,Y,Z", "e.g. --mask-spacing 1,1,8");
+    ro.pixel_x = a.mask_spacing[0];
+    ro.pixel_y = a.mask_spacing[1];
+    if (a.mask_spacing.size() == 3) po.spacing = a.mask_spacing[2];
+  }
+  if (!a.mask.empty() && !is_label_image_file(a.mask))
+    throw InvalidInput(ErrorCode::Usage, {}, "--mask " + a.mask + ": unknown image extension",
+                       "use .nii.gz, .nii, .nrrd or .mha");
+  const Phantom ph = make_phantom(a.name, po);
+  std::vector<LabelVolume> mask;
+  if (!a.mask.empty()) mask = rasterize_phantom(ph, ro);  // validate everything before writing
+  if (a.out.empty()) {
+    write_mask_atomic(a.mask, mask);
+    const LabelVolume& v = mask.front();
+    std::cout << fmt::format("phantom {}: wrote mask {} ({}x{}x{} voxels of {:.3g}x{:.3g}x{:.3g} mm, {} frame(s), label {})\n",
+                             ph.name, a.mask, v.dims[0], v.dims[1], v.dims[2], v.spacing[0], v.spacing[1], v.spacing[2],
+                             mask.size(), ro.label);
+    return 0;
+  }
   OutputDir out(a.out);
   out.write("contours.json", format_contours_json(ph.contours));
   {
@@ -80,10 +126,11 @@ int run_phantom(const PhantomArgs& a) {
     frames.meshes = ph.truth;
     for (const Frame& f : ph.contours.frames) frames.times_ms.push_back(f.time_ms);
     write_mesh_frames(truth, frames, "contour4d phantom " + ph.name + " ground truth (mm)");
-    truth.write("truth.json", truth_json(ph, a.options));
+    truth.write("truth.json", truth_json(ph, po));
     truth.commit();
   }
   out.commit();
+  if (!a.mask.empty()) write_mask_atomic(a.mask, mask);
 
   std::size_t contours = 0, triangles = 0;
   for (const Frame& f : ph.contours.frames)
@@ -98,6 +145,13 @@ int run_phantom(const PhantomArgs& a) {
   std::cout << fmt::format("  true volume {:.1f} .. {:.1f} mL, truth {} triangles in all\n", vmin / 1000, vmax / 1000,
                            triangles);
   std::cout << fmt::format("  wrote {}/contours.json and {}/truth/ (mesh.pvd, frames/, truth.json)\n", a.out, a.out);
+  if (!a.mask.empty()) {
+    const LabelVolume& v = mask.front();
+    std::cout << fmt::format("  wrote mask {}: {}x{}x{} voxels of {:.3g}x{:.3g}x{:.3g} mm, {} frame(s), label {}; "
+                             "voxel k = slice id\n",
+                             a.mask, v.dims[0], v.dims[1], v.dims[2], v.spacing[0], v.spacing[1], v.spacing[2],
+                             mask.size(), ro.label);
+  }
   return 0;
 }
 
@@ -115,7 +169,9 @@ void add_phantom_command(CLI::App& root, std::vector<Command>& commands) {
               "  contour4d phantom --list\n"
               "  contour4d phantom left-heart -o lh                 # ED, ES, ED; slices y = 32.5 - 5k\n"
               "  contour4d phantom ellipsoid -o el --frames 10 --spacing 8\n"
-              "  contour4d phantom torus -o tor --oblique           # rotated 30 deg about (1,2,3), moved (12,-7,33)\n");
+              "  contour4d phantom torus -o tor --oblique           # rotated 30 deg about (1,2,3), moved (12,-7,33)\n"
+              "  contour4d phantom left-heart-cycle -o lh --oblique --mask lh/mask.nii.gz --mask-spacing 1,1,8\n"
+              "                                                     # + a 4D label image sampled on the slice planes\n");
   app->add_option("name", args->name, "phantom name (see --list)");
   app->add_option("-o,--output", args->out, "output folder (replaced atomically)");
   app->add_flag("--list", args->list, "list the phantoms and exit");
@@ -125,6 +181,12 @@ void add_phantom_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_flag("--oblique", args->options.oblique, "apply the fixed oblique rigid motion to contours and truth");
   app->add_option("--truth-edge", args->options.truth_edge, "target edge length of the truth mesh (mm)")
       ->capture_default_str();
+  app->add_option("--mask", args->mask,
+                  "also write the phantom as a label image (.nii.gz, .nii, .nrrd, .mha; 4D for several frames): "
+                  "voxel centres inside the analytic surface, slices on the phantom's slice planes");
+  app->add_option("--mask-spacing", args->mask_spacing, "mask voxel size X,Y (in-plane, mm; default 1,1) or X,Y,Z (Z sets --spacing)")
+      ->delimiter(',');
+  app->add_option("--mask-label", args->mask_label, "label value of the mask")->capture_default_str();
   commands.push_back({app, [args] { return run_phantom(*args); }});
 }
 

@@ -1,9 +1,15 @@
-// Marching squares on a 2D field, with Taubin smoothing and arc-length resampling of the chains.
+// Marching squares on a 2D field, the sub-pixel fit of a mask's staircase, Taubin smoothing and
+// arc-length resampling of the chains.
 //
 // References: Miara et al., "New Method for 4D Reconstruction of Medical Images", §III.B
 // (contour extraction as an ordered chain of points); W. E. Lorensen, H. E. Cline, "Marching
 // cubes", SIGGRAPH 1987 (the 2D case table); G. Taubin, "A signal processing approach to fair
-// surface design", SIGGRAPH 1995 (λ|μ smoothing without shrinkage).
+// surface design", SIGGRAPH 1995 (λ|μ smoothing without shrinkage); W. S. Cleveland, "Robust
+// locally weighted regression and smoothing scatterplots", JASA 1979 (local polynomial fits with a
+// tricube kernel, which have no curvature bias); R. Whitaker, "Reducing aliasing artifacts in
+// iso-surfaces of binary volumes", VolVis 2000, and V. Lempitsky, "Surface extraction from binary
+// volumes with higher-order smoothness", CVPR 2010 (a smooth boundary must stay consistent with the
+// binary samples: here, cross each traced edge between its two pixel centres).
 #include "contour4d/extract/marching_squares.h"
 
 #include <algorithm>
@@ -123,6 +129,145 @@ void smooth_closed_taubin(std::vector<Vec2>& polyline, int passes, double lambda
     step(lambda);
     step(mu);
   }
+}
+
+std::vector<Vec2> fit_mask_staircase(const std::vector<Vec2>& chain, Vec2 sp, const StaircaseFitOptions& o) {
+  const std::size_t n = chain.size();
+  std::vector<Vec2> c(n), e(n);
+  std::vector<double> var_along(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    c[i] = {chain[i].x * sp.x, chain[i].y * sp.y};
+    // On a 0/1 field every crossing is an edge midpoint: x is whole on vertical edges.
+    const bool vertical = chain[i].x == std::floor(chain[i].x);
+    e[i] = vertical ? Vec2{0, 1} : Vec2{1, 0};
+    const double half = 0.5 * (vertical ? sp.y : sp.x);
+    var_along[i] = half * half / 3.0;  // uniform over the edge
+  }
+  if (n < 5) return c;
+  const double px = std::min(sp.x, sp.y);
+  const double floor_var = (0.02 * px) * (0.02 * px);  // no vertex pins the curve tighter than 0.02 px
+  const double max_window = o.max_window_px * px;
+  const double cos_turn = std::cos(o.max_turn_deg * 3.14159265358979323846 / 180.0);
+  // Tangents come from the current estimate of the curve; the first is a Taubin-smoothed staircase.
+  std::vector<Vec2> cur = c, next(n), tan(n);
+  smooth_closed_taubin(cur, 10);
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+  auto wrap = [sn](std::ptrdiff_t i) { return static_cast<std::size_t>((i % sn + sn) % sn); };
+  std::vector<std::size_t> window;
+  for (int it = 0; it < std::max(1, o.iterations); ++it) {
+    for (std::size_t i = 0; i < n; ++i) {
+      Vec2 t = cur[(i + 1) % n] - cur[(i + n - 1) % n];
+      const double len = norm(t);
+      tan[i] = len > 0 ? (1.0 / len) * t : Vec2{1, 0};
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 t = tan[i], nn{-t.y, t.x}, origin = cur[i];
+      next[i] = c[i];  // no consistent fit: the edge midpoint (within half a pixel of the boundary)
+      for (int informative = o.informative; informative >= 1; --informative) {
+        window.assign(1, i);
+        for (int dir = -1; dir <= 1; dir += 2) {
+          int count = 0;
+          double arc = 0;
+          Vec2 prev = cur[i];
+          for (std::ptrdiff_t k = 1; k < static_cast<std::ptrdiff_t>(n / 2); ++k) {
+            const std::size_t j = wrap(static_cast<std::ptrdiff_t>(i) + dir * k);
+            arc += norm(cur[j] - prev);
+            prev = cur[j];
+            if (arc > max_window || dot(tan[j], t) < cos_turn) break;
+            window.push_back(j);
+            const Vec2 nj{-tan[j].y, tan[j].x};
+            if (std::abs(dot(e[j], nj)) < 0.7071) ++count;
+            if (count >= informative) break;
+          }
+        }
+        if (window.size() < 5) break;
+        // Weighted least squares v = Σ sol[m] u^m (m <= degree) in the frame (origin, t, nn): each
+        // vertex counts by the inverse of its uncertainty across the curve, which lies along its edge.
+        const int nb = std::clamp(o.degree, 1, 3) + 1;
+        double umax = 0;
+        for (std::size_t j : window) umax = std::max(umax, std::abs(dot(c[j] - origin, t)));
+        umax = 1.05 * umax + 1e-12;
+        double M[4][5] = {};
+        for (std::size_t j : window) {
+          const Vec2 d = c[j] - origin;
+          const double u = dot(d, t), v = dot(d, nn);
+          const Vec2 nj{-tan[j].y, tan[j].x};
+          const double en = dot(e[j], nj);
+          const double z = std::min(1.0, std::abs(u) / umax), k3 = 1 - z * z * z;
+          const double w = k3 * k3 * k3 / (var_along[j] * en * en + floor_var);
+          // Scaled powers (u / umax)^m keep the system well conditioned.
+          double bvec[4] = {1, u / umax, 0, 0};
+          for (int m = 2; m < 4; ++m) bvec[m] = bvec[m - 1] * bvec[1];
+          for (int aa = 0; aa < nb; ++aa) {
+            M[aa][nb] += w * bvec[aa] * v;
+            for (int bb = 0; bb < nb; ++bb) M[aa][bb] += w * bvec[aa] * bvec[bb];
+          }
+        }
+        // Gaussian elimination with partial pivoting.
+        bool singular = false;
+        const double scale = M[0][0];
+        for (int col = 0; col < nb && !singular; ++col) {
+          int piv = col;
+          for (int rr = col + 1; rr < nb; ++rr)
+            if (std::abs(M[rr][col]) > std::abs(M[piv][col])) piv = rr;
+          if (!(std::abs(M[piv][col]) > 1e-12 * scale)) {
+            singular = true;
+            break;
+          }
+          for (int cc = 0; cc <= nb; ++cc) std::swap(M[col][cc], M[piv][cc]);
+          for (int rr = 0; rr < nb; ++rr) {
+            if (rr == col) continue;
+            const double fct = M[rr][col] / M[col][col];
+            for (int cc = col; cc <= nb; ++cc) M[rr][cc] -= fct * M[col][cc];
+          }
+        }
+        if (singular) continue;
+        double sol[4] = {0, 0, 0, 0};
+        for (int m = 0; m < nb; ++m) {
+          double scale_m = 1;
+          for (int k = 0; k < m; ++k) scale_m *= umax;
+          sol[m] = M[m][nb] / M[m][m] / scale_m;
+        }
+        // The mask's own constraint: the boundary crosses each edge between its two pixel centres.
+        // A fit that crosses the inner half of its window outside that is the wrong model there
+        // (a flat run next to curved flanks, a sharp tip): shrink the window.
+        bool consistent = true;
+        for (std::size_t j : window) {
+          const Vec2 d = c[j] - origin;
+          const double u = dot(d, t), v = dot(d, nn);
+          if (std::abs(u) > 0.6 * umax) continue;
+          const double fu = sol[0] + u * (sol[1] + u * (sol[2] + u * sol[3]));
+          const double slope = sol[1] + u * (2 * sol[2] + 3 * sol[3] * u);
+          const double denom = dot(e[j], nn) - slope * dot(e[j], t);
+          if (std::abs(denom) < 0.3) continue;  // an edge nearly along the curve bounds little
+          if (std::abs((fu - v) / denom) > std::sqrt(3.0 * var_along[j]) * (1 + o.tolerance)) {
+            consistent = false;
+            break;
+          }
+        }
+        if (!consistent) continue;
+        auto f = [&sol](double u) { return sol[0] + u * (sol[1] + u * (sol[2] + u * sol[3])); };
+        // The new point: where the fit crosses the vertex's own edge, kept between the edge's two
+        // pixel centres (the mask says the boundary crosses there); for an edge nearly along the
+        // curve, the fit's point over the vertex, kept within half an edge of the midpoint.
+        const Vec2 d = c[i] - origin;
+        const double u = dot(d, t), v = dot(d, nn);
+        const double slope = sol[1] + u * (2 * sol[2] + 3 * sol[3] * u);
+        const double et = dot(e[i], t), enn = dot(e[i], nn), denom = enn - slope * et;
+        const double half = std::sqrt(3.0 * var_along[i]);
+        if (std::abs(denom) >= 0.3) {
+          next[i] = c[i] + std::clamp((f(u) - v) / denom, -half, half) * e[i];
+        } else {
+          const Vec2 q = origin + u * t + f(u) * nn, step = q - c[i];
+          const double len = norm(step);
+          next[i] = len > half ? c[i] + (half / len) * step : q;
+        }
+        break;
+      }
+    }
+    cur.swap(next);
+  }
+  return cur;
 }
 
 std::vector<Vec2> resample_closed(const std::vector<Vec2>& polyline, int count) {

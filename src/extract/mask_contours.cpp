@@ -3,8 +3,9 @@
 // Reference: Miara et al., "New Method for 4D Reconstruction of Medical Images", §III.B
 // ("Extraction des contours"): the segmented slices are turned into chained, ordered lists of
 // contour points, for every slice of every time frame. We trace them with marching squares on each
-// label's mask (sub-pixel, saddles resolved consistently), remove the pixel staircase with Taubin
-// λ|μ smoothing (no shrinkage) and resample evenly by arc length (docs/images.md).
+// label's mask (sub-pixel, saddles resolved consistently), remove the pixel staircase by fitting
+// the sub-pixel edge (fit_mask_staircase; or Taubin λ|μ smoothing) and resample evenly by arc
+// length (docs/images.md).
 #include "contour4d/extract/mask_contours.h"
 
 #include <tbb/parallel_for.h>
@@ -28,6 +29,12 @@ std::optional<int> parse_int(const std::string& s) {
   auto [ptr, ec] = std::from_chars(s.data(), end, v);
   if (ec != std::errc() || ptr != end || s.empty()) return std::nullopt;
   return v;
+}
+
+std::string fmt_mm(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
 }
 
 std::string join_labels(const std::set<int>& present, const LabelPreset* preset) {
@@ -92,6 +99,7 @@ std::vector<Contour> slice_contours(const LabelVolume& vol, const SliceAxes& g, 
   std::vector<Contour> out;
   const int margin = 1 + static_cast<int>(std::ceil(3.0 * std::max(0.0, opt.presmooth_sigma_px)));
   const Vec3 slice_base = g.origin + (k * g.sp[g.axis]) * g.col[g.axis];
+  const bool edge_fit = opt.staircase == StaircaseSmoothing::EdgeFit && !(opt.presmooth_sigma_px > 0.0);
   for (std::size_t l = 0; l < nl; ++l) {
     const auto& bx = box[l];
     if (bx[2] < 0) continue;
@@ -110,7 +118,14 @@ std::vector<Contour> slice_contours(const LabelVolume& vol, const SliceAxes& g, 
       for (std::size_t i = 0; i < chain.size(); ++i)
         mm[i] = {(chain[i].x + x0) * g.sp[g.ia], (chain[i].y + y0) * g.sp[g.ib]};
       std::vector<Vec2> poly = mm;
-      smooth_closed_taubin(poly, opt.taubin_passes);
+      if (edge_fit) {
+        // Whole-pixel offsets keep every crossing an edge midpoint (what the fit relies on).
+        std::vector<Vec2> px(chain.size());
+        for (std::size_t i = 0; i < chain.size(); ++i) px[i] = {chain[i].x + x0, chain[i].y + y0};
+        poly = fit_mask_staircase(px, {g.sp[g.ia], g.sp[g.ib]});
+      } else if (opt.staircase != StaircaseSmoothing::None) {
+        smooth_closed_taubin(poly, opt.taubin_passes);
+      }
       if (opt.resample_mm > 0.0) {
         double len = 0.0;
         for (std::size_t i = 0; i < poly.size(); ++i) len += norm(poly[(i + 1) % poly.size()] - poly[i]);
@@ -273,9 +288,13 @@ InputResult read_label_image_contours(const std::filesystem::path& input, const 
   std::size_t n = 0;
   for (const Frame& f : r.sequence.frames)
     for (const Slice& s : f.slices) n += s.contours.size();
-  r.notes.push_back(std::to_string(n) + " contours extracted (marching squares, Taubin " +
-                    std::to_string(options.taubin_passes) + " passes, resampled every " +
-                    std::to_string(options.resample_mm) + " mm)");
+  const std::string smoothing =
+      options.staircase == StaircaseSmoothing::None ? "no smoothing"
+      : options.staircase == StaircaseSmoothing::EdgeFit && !(options.presmooth_sigma_px > 0.0)
+          ? "sub-pixel edge fit"
+          : "Taubin " + std::to_string(options.taubin_passes) + " passes";
+  r.notes.push_back(std::to_string(n) + " contours extracted (marching squares, " + smoothing + ", resampled every " +
+                    fmt_mm(options.resample_mm) + " mm)");
   return r;
 }
 

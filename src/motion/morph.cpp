@@ -308,6 +308,10 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   const std::size_t nv = frame0.positions.size();
   const auto nb = neighbours(nv, frame0.triangles);
   const std::vector<Chain> chains = find_chains(seq, frame0);
+  // Per vertex, the edges opposite it in its triangles, in the triangles' (outward) order.
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> opposite(nv);
+  for (const Triangle& tri : frame0.triangles)
+    for (std::size_t k = 0; k < 3; ++k) opposite[tri[k]].push_back({tri[(k + 1) % 3], tri[(k + 2) % 3]});
   // Rest lengths of the relaxation springs: frame 0's edges, per vertex in neighbour order.
   std::vector<std::vector<double>> rest(nv);
   for (std::size_t i = 0; i < nv; ++i)
@@ -422,6 +426,19 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
               if (len > 0) d += (std::clamp((len - scale * rest[i][k]) / len, -0.3, 0.3)) * e;
             }
             d = (opt.spring_weight * d + (1.0 - opt.spring_weight) * c) / static_cast<double>(std::max<std::size_t>(1, nb[i].size()));
+            if (opt.shape_weight > 0 && !opposite[i].empty()) {
+              // Equilateral pull: the mean of the apexes of equilateral triangles raised, in the
+              // tangent plane, on the edges opposite the vertex.
+              Vec3 apex{};
+              for (const auto& [j, k] : opposite[i]) {
+                const Vec3 e = x[k] - x[j];
+                const Vec3 side = cross(normals[i], e);
+                const double ls = norm(side);
+                apex += 0.5 * (x[j] + x[k]) + (ls > 0 ? (0.8660254037844386 * norm(e) / ls) * side : Vec3{});
+              }
+              const Vec3 pull = apex / static_cast<double>(opposite[i].size()) - x[i];
+              d = (1.0 - opt.shape_weight) * d + opt.shape_weight * pull;
+            }
             d -= dot(d, normals[i]) * normals[i];
             moved[i] = x[i] + opt.relax_step * d;
           });

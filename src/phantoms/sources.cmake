@@ -1,2 +1,2 @@
 # Sources of the phantoms stage (paths relative to src/).
-target_sources(contour4d PRIVATE phantoms/phantom.cpp)
+target_sources(contour4d PRIVATE phantoms/phantom.cpp phantoms/rasterize.cpp)

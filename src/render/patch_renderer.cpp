@@ -8,9 +8,6 @@
 // dispatches to whatever context is current (EGL offscreen, or GLX under GLFW).
 #include "contour4d/render/patch_renderer.h"
 
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/glcorearb.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,16 +16,15 @@
 #include <string>
 
 #include "contour4d/core/errors.h"
+#include "gl_util_internal.h"
 
 namespace c4d {
 namespace {
 
-using Mat4 = std::array<float, 16>;  // column-major
+const GlFailure kFailure{"OpenGL tessellation pipeline: ",
+                         "needs OpenGL 4.3 core with tessellation shaders (Mesa llvmpipe 22+ or a GPU driver)"};
 
-[[noreturn]] void gl_fail(const std::string& what) {
-  throw Error(ErrorCode::Internal, {}, "OpenGL tessellation pipeline: " + what,
-              "needs OpenGL 4.3 core with tessellation shaders (Mesa llvmpipe 22+ or a GPU driver)");
-}
+[[noreturn]] void fail(const std::string& what) { gl_fail(kFailure, what); }
 
 const char* kVertex = R"(#version 430 core
 uniform samplerBuffer corners;  // texel 2 (frame * nb + v): position, +1: normal
@@ -136,99 +132,11 @@ void main() {
 }
 )";
 
-const char* kFragment = R"(#version 430 core
-in vec3 vpos;
-uniform vec3 color;
-uniform int wire;
-out vec4 frag;
-void main() {
-  if (wire != 0) { frag = vec4(0.08, 0.08, 0.1, 1.0); return; }
-  vec3 n = normalize(cross(dFdx(vpos), dFdy(vpos)));
-  float lambert = abs(n.z);  // headlight along the view axis
-  frag = vec4(color * (0.15 + 0.85 * lambert), 1.0);
-}
-)";
-
-const char* kLineVertex = R"(#version 430 core
-layout(location = 0) in vec3 pos;
-uniform mat4 mv;
-uniform mat4 proj;
-void main() { gl_Position = proj * (mv * vec4(pos, 1.0)); }
-)";
-
 const char* kLineFragment = R"(#version 430 core
 uniform vec3 color;
 out vec4 frag;
 void main() { frag = vec4(color, 1.0); }
 )";
-
-GLuint compile(GLenum type, const char* src, const char* name) {
-  const GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &src, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    glDeleteShader(s);
-    gl_fail(std::string(name) + " shader compilation failed: " + log);
-  }
-  return s;
-}
-
-GLuint link(std::initializer_list<std::pair<GLenum, const char*>> stages, const char* name) {
-  const GLuint p = glCreateProgram();
-  std::vector<GLuint> shaders;
-  for (const auto& [type, src] : stages) {
-    shaders.push_back(compile(type, src, name));
-    glAttachShader(p, shaders.back());
-  }
-  glLinkProgram(p);
-  for (GLuint s : shaders) glDeleteShader(s);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    glGetProgramInfoLog(p, sizeof log, nullptr, log);
-    glDeleteProgram(p);
-    gl_fail(std::string(name) + " program link failed: " + log);
-  }
-  return p;
-}
-
-struct Frames {
-  GLint id[4] = {0, 0, 0, 0};
-  GLfloat w[4] = {0, 0, 0, 0};
-  std::size_t nearest = 0;
-};
-
-Frames blend(const std::vector<double>& times, double t, TimeInterpolation mode) {
-  Frames fr;
-  const std::size_t n = times.size();
-  const bool periodic = mode == TimeInterpolation::CatmullRomPeriodic;
-  const TimeSample ts = locate_time(times, t, periodic);
-  fr.nearest = ts.u < 0.5 ? ts.i0 : ts.i1;
-  if (mode == TimeInterpolation::Step || ts.u == 0.0) {
-    fr.id[0] = static_cast<GLint>(ts.i0);
-    fr.w[0] = 1;
-    fr.nearest = ts.i0;
-  } else if (!periodic) {
-    fr.id[0] = static_cast<GLint>(ts.i0);
-    fr.id[1] = static_cast<GLint>(ts.i1);
-    fr.w[0] = static_cast<float>(1 - ts.u);
-    fr.w[1] = static_cast<float>(ts.u);
-  } else {
-    double w[4];
-    catmull_rom_weights(ts.u, w);
-    const std::size_t ids[4] = {(ts.i0 + n - 1) % n, ts.i0, ts.i1, (ts.i1 + 1) % n};
-    for (int i = 0; i < 4; ++i) {
-      fr.id[i] = static_cast<GLint>(ids[i]);
-      fr.w[i] = static_cast<float>(w[i]);
-    }
-  }
-  return fr;
-}
 
 }  // namespace
 
@@ -256,8 +164,7 @@ struct PatchRenderer::Impl {
     const Vec3 eye = dist * e, d = -1.0 * e;  // positions are uploaded relative to the centre
     const Vec3 side = normalized(cross(d, Vec3{0, 0, 1}));
     const Vec3 up = cross(side, d);
-    mv = {float(side.x), float(up.x), float(-d.x), 0, float(side.y), float(up.y), float(-d.y), 0,
-          float(side.z), float(up.z), float(-d.z), 0, float(-dot(side, eye)), float(-dot(up, eye)), float(dot(d, eye)), 1};
+    mv = view_matrix(side, up, d, eye);
     const float aspect = float(std::max(s.width, 1)) / float(std::max(s.height, 1));
     const float n = float(std::max(dist - 1.5 * radius, 0.01 * radius)), fa = float(dist + 1.5 * radius);
     const float f = float(1.0 / std::tan(fov / 2));
@@ -265,21 +172,18 @@ struct PatchRenderer::Impl {
     proj = {fx, 0, 0, 0, 0, fy, 0, 0, 0, 0, -(fa + n) / (fa - n), -1, 0, 0, -2 * fa * n / (fa - n), 0};
   }
 
-  void set_uniforms(GLuint p) {
-    glUseProgram(p);
-    glUniformMatrix4fv(glGetUniformLocation(p, "mv"), 1, GL_FALSE, mv.data());
-    glUniformMatrix4fv(glGetUniformLocation(p, "proj"), 1, GL_FALSE, proj.data());
-  }
+  void set_uniforms(GLuint p) { use_program(p, mv, proj); }
 };
 
 PatchRenderer::PatchRenderer() : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
-  s.patch_prog = link({{GL_VERTEX_SHADER, kVertex},
-                       {GL_TESS_CONTROL_SHADER, kControl},
-                       {GL_TESS_EVALUATION_SHADER, kEvaluation},
-                       {GL_FRAGMENT_SHADER, kFragment}},
-                      "patch");
-  s.line_prog = link({{GL_VERTEX_SHADER, kLineVertex}, {GL_FRAGMENT_SHADER, kLineFragment}}, "contour line");
+  s.patch_prog = link_program({{GL_VERTEX_SHADER, kVertex},
+                               {GL_TESS_CONTROL_SHADER, kControl},
+                               {GL_TESS_EVALUATION_SHADER, kEvaluation},
+                               {GL_FRAGMENT_SHADER, kShadedFragment}},
+                              "patch", kFailure);
+  s.line_prog = link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kLineFragment}}, "contour line",
+                             kFailure);
   glGenVertexArrays(1, &s.vao);
   glGenVertexArrays(1, &s.line_vao);
   glGenQueries(1, &s.query);
@@ -309,13 +213,7 @@ void PatchRenderer::load(const PatchMesh& pm) {
   s.grid = pm.grid;
   s.times = pm.times_ms;
   const std::size_t nf = pm.positions.size();
-  Vec3 lo = pm.positions[0][0], hi = lo;
-  for (const auto& f : pm.positions)
-    for (const Vec3& p : f)
-      for (int c = 0; c < 3; ++c) {
-        lo[c] = std::min(lo[c], p[c]);
-        hi[c] = std::max(hi[c], p[c]);
-      }
+  const auto [lo, hi] = frame_bounds(pm.positions);
   s.center = 0.5 * (lo + hi);
   s.radius = std::max(0.5 * norm(hi - lo), 1e-6);
   std::vector<float> corners(nf * s.nb * 8);
@@ -347,7 +245,7 @@ void PatchRenderer::load(const PatchMesh& pm) {
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   if (static_cast<std::size_t>(max_texels) < pm.displacement.size())
-    gl_fail("displacement maps need " + std::to_string(pm.displacement.size()) + " texels, the driver allows " +
+    fail("displacement maps need " + std::to_string(pm.displacement.size()) + " texels, the driver allows " +
             std::to_string(max_texels) + " (use fewer base triangles or a smaller grid)");
 }
 
@@ -390,9 +288,9 @@ std::size_t PatchRenderer::static_bytes() const { return impl_->bytes; }
 
 std::size_t PatchRenderer::draw(const PatchDrawState& st) {
   Impl& s = *impl_;
-  if (s.index_count == 0) gl_fail("draw before load");
+  if (s.index_count == 0) fail("draw before load");
   s.camera(st);
-  const Frames fr = blend(s.times, st.t_ms, st.interpolation);
+  const FrameBlend fr = blend_frames(s.times, st.t_ms, st.interpolation);
   glViewport(0, 0, st.width, st.height);
   glClearColor(1, 1, 1, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

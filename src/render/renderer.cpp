@@ -7,10 +7,8 @@
 // come from glvnd's libOpenGL. Normals come from screen-space derivatives, so both paths shade alike.
 #include "contour4d/render/renderer.h"
 
-#define GL_GLEXT_PROTOTYPES 1
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#include <GL/glcorearb.h>
 
 #include <algorithm>
 #include <array>
@@ -19,40 +17,16 @@
 #include <string>
 
 #include "contour4d/core/errors.h"
+#include "gl_util_internal.h"
 
 namespace c4d {
 namespace {
 
-[[noreturn]] void fail(const std::string& what) {
-  throw Error(ErrorCode::Internal, {}, "headless OpenGL: " + what,
-              "needs EGL with OpenGL 4.3 core: install Mesa (libegl-mesa0, libgl1-mesa-dri) and try "
-              "LIBGL_ALWAYS_SOFTWARE=1 EGL_PLATFORM=surfaceless; on a GPU check its EGL driver");
-}
+const GlFailure kFailure{"headless OpenGL: ",
+                         "needs EGL with OpenGL 4.3 core: install Mesa (libegl-mesa0, libgl1-mesa-dri) and try "
+                         "LIBGL_ALWAYS_SOFTWARE=1 EGL_PLATFORM=surfaceless; on a GPU check its EGL driver"};
 
-using Mat4 = std::array<float, 16>;  // column-major
-
-const char* kFragment = R"(#version 430 core
-in vec3 vpos;
-uniform vec3 color;
-out vec4 frag;
-void main() {
-  vec3 n = normalize(cross(dFdx(vpos), dFdy(vpos)));
-  float lambert = abs(n.z);                  // headlight along the view axis
-  frag = vec4(color * (0.15 + 0.85 * lambert), 1.0);
-}
-)";
-
-const char* kClassicalVertex = R"(#version 430 core
-layout(location = 0) in vec3 pos;
-uniform mat4 mv;
-uniform mat4 proj;
-out vec3 vpos;
-void main() {
-  vec4 p = mv * vec4(pos, 1.0);
-  vpos = p.xyz;
-  gl_Position = proj * p;
-}
-)";
+[[noreturn]] void fail(const std::string& what) { gl_fail(kFailure, what); }
 
 const char* kCompactVertex = R"(#version 430 core
 layout(location = 0) in vec3 base;
@@ -83,38 +57,6 @@ void main() {
 }
 )";
 
-GLuint compile(GLenum type, const char* src) {
-  const GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &src, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    fail(std::string("shader compilation failed: ") + log);
-  }
-  return s;
-}
-
-GLuint link(const char* vs, const char* fs) {
-  const GLuint p = glCreateProgram();
-  const GLuint a = compile(GL_VERTEX_SHADER, vs), b = compile(GL_FRAGMENT_SHADER, fs);
-  glAttachShader(p, a);
-  glAttachShader(p, b);
-  glLinkProgram(p);
-  glDeleteShader(a);
-  glDeleteShader(b);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(p, sizeof log, nullptr, log);
-    fail(std::string("program link failed: ") + log);
-  }
-  return p;
-}
-
 }  // namespace
 
 struct OffscreenRenderer::Impl {
@@ -134,13 +76,7 @@ struct OffscreenRenderer::Impl {
   std::unique_ptr<PatchRenderer> patches;  // created on first use, destroyed before the context
 
   void fit_camera(const std::vector<std::vector<Vec3>>& all) {
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (const auto& f : all)
-      for (const Vec3& p : f)
-        for (int c = 0; c < 3; ++c) {
-          lo[c] = std::min(lo[c], p[c]);
-          hi[c] = std::max(hi[c], p[c]);
-        }
+    const auto [lo, hi] = frame_bounds(all);
     center = 0.5 * (lo + hi);
     const double r = std::max(0.5 * norm(hi - lo), 1e-6);
     const Vec3 d = normalized(opt.view_direction);
@@ -149,8 +85,7 @@ struct OffscreenRenderer::Impl {
     const Vec3 s = normalized(cross(d, up));
     const Vec3 u = cross(s, d);
     const Vec3 eye = -2.5 * r * d;  // positions are uploaded relative to the centre
-    mv = {float(s.x), float(u.x), float(-d.x), 0, float(s.y), float(u.y), float(-d.y), 0,
-          float(s.z), float(u.z), float(-d.z), 0, float(-dot(s, eye)), float(-dot(u, eye)), float(dot(d, eye)), 1};
+    mv = view_matrix(s, u, d, eye);
     const float aspect = float(opt.width) / float(opt.height);
     const float n = float(1.5 * r * 0.5), fa = float(3.5 * r + r);
     const float hr = float(r * 1.05);
@@ -163,9 +98,7 @@ struct OffscreenRenderer::Impl {
   }
 
   void set_common(GLuint prog) {
-    glUseProgram(prog);
-    glUniformMatrix4fv(glGetUniformLocation(prog, "mv"), 1, GL_FALSE, mv.data());
-    glUniformMatrix4fv(glGetUniformLocation(prog, "proj"), 1, GL_FALSE, proj.data());
+    use_program(prog, mv, proj);
     glUniform3fv(glGetUniformLocation(prog, "color"), 1, opt.color);
   }
 
@@ -245,8 +178,8 @@ OffscreenRenderer::OffscreenRenderer(const RenderOptions& options) : impl_(std::
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s.depth);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) fail("framebuffer incomplete");
   glEnable(GL_DEPTH_TEST);
-  s.classical_prog = link(kClassicalVertex, kFragment);
-  s.compact_prog = link(kCompactVertex, kFragment);
+  s.classical_prog = link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
+  s.compact_prog = link_program({{GL_VERTEX_SHADER, kCompactVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
 }
 
 OffscreenRenderer::~OffscreenRenderer() {
@@ -372,28 +305,7 @@ void OffscreenRenderer::load_compact(const CompactModel& model) {
 
 std::size_t OffscreenRenderer::draw_compact(double t_ms) {
   Impl& s = *impl_;
-  const std::size_t n = s.times.size();
-  GLint fr[4] = {0, 0, 0, 0};
-  GLfloat fw[4] = {0, 0, 0, 0};
-  const bool periodic = s.opt.interpolation == TimeInterpolation::CatmullRomPeriodic;
-  const TimeSample ts = locate_time(s.times, t_ms, periodic);
-  if (s.opt.interpolation == TimeInterpolation::Step || ts.u == 0.0) {
-    fr[0] = static_cast<GLint>(ts.i0);
-    fw[0] = 1;
-  } else if (!periodic) {
-    fr[0] = static_cast<GLint>(ts.i0);
-    fr[1] = static_cast<GLint>(ts.i1);
-    fw[0] = static_cast<float>(1 - ts.u);
-    fw[1] = static_cast<float>(ts.u);
-  } else {
-    double w[4];
-    catmull_rom_weights(ts.u, w);
-    fr[0] = static_cast<GLint>((ts.i0 + n - 1) % n);
-    fr[1] = static_cast<GLint>(ts.i0);
-    fr[2] = static_cast<GLint>(ts.i1);
-    fr[3] = static_cast<GLint>((ts.i1 + 1) % n);
-    for (int i = 0; i < 4; ++i) fw[i] = static_cast<float>(w[i]);
-  }
+  const FrameBlend fr = blend_frames(s.times, t_ms, s.opt.interpolation);
   glBindVertexArray(s.vao);
   s.begin_frame();
   s.set_common(s.compact_prog);
@@ -401,10 +313,10 @@ std::size_t OffscreenRenderer::draw_compact(double t_ms) {
   glBindTexture(GL_TEXTURE_BUFFER, s.tex);
   glUniform1i(glGetUniformLocation(s.compact_prog, "motion"), 0);
   glUniform1i(glGetUniformLocation(s.compact_prog, "nc"), static_cast<GLint>(s.nc));
-  glUniform4iv(glGetUniformLocation(s.compact_prog, "frames"), 1, fr);
-  glUniform4fv(glGetUniformLocation(s.compact_prog, "fw"), 1, fw);
+  glUniform4iv(glGetUniformLocation(s.compact_prog, "frames"), 1, fr.id);
+  glUniform4fv(glGetUniformLocation(s.compact_prog, "fw"), 1, fr.w);
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.index_count), GL_UNSIGNED_INT, nullptr);
-  return sizeof fr + sizeof fw;
+  return sizeof fr.id + sizeof fr.w;
 }
 
 PatchRenderer& OffscreenRenderer::patches() {

@@ -12,6 +12,7 @@
 #include "contour4d/io/model_c4d.h"
 #include "contour4d/temporal/displacement_map.h"
 #include "contour4d/temporal/sequence.h"
+#include "temporal_fixtures.h"
 
 namespace c4d {
 namespace {
@@ -197,11 +198,7 @@ TEST(Compact, SurfaceErrorBoundHoldsAndIsSmaller) {
 // its intersections with the patch normals), the smooth PN patches alone do not; the CPU
 // tessellation has level² triangles per base triangle and shares edge vertices.
 TEST(DisplacementMap, SamplesLieOnTheFineSurface) {
-  const MeshSequence seq = synthetic_beating_mesh(3, 3);
-  PatchOptions po;
-  po.base_triangles = 80;
-  po.grid = 4;
-  const PatchMesh pm = build_patch_mesh(seq, po);
+  const auto [seq, po, pm] = test::beating_patches(3, 3, 80, 4);
   ASSERT_GT(pm.triangles.size(), 40u);
   EXPECT_EQ(pm.missed, 0u);
   EXPECT_EQ(pm.displacement.size(), seq.positions.size() * pm.triangles.size() * patch_samples(po.grid));

@@ -15,6 +15,7 @@
 #include "contour4d/temporal/compact.h"
 #include "contour4d/temporal/displacement_map.h"
 #include "contour4d/temporal/sequence.h"
+#include "temporal_fixtures.h"
 
 // Under ASan: Mesa unloads its driver (swrast_dri.so) at eglTerminate, so the few hundred bytes it
 // keeps show as leaks in an "<unknown module>" that no LSan suppression can name (tests/lsan.supp
@@ -37,6 +38,14 @@ double object_fraction(const Image& im) {
   return static_cast<double>(n) / (im.width * im.height);
 }
 
+// The image size of the beating-shape tests: small, so that software rendering stays quick.
+RenderOptions small_image() {
+  RenderOptions o;
+  o.width = 160;
+  o.height = 120;
+  return o;
+}
+
 std::unique_ptr<OffscreenRenderer> make(const RenderOptions& o) {
   try {
     return std::make_unique<OffscreenRenderer>(o);
@@ -48,9 +57,7 @@ std::unique_ptr<OffscreenRenderer> make(const RenderOptions& o) {
 }
 
 TEST(Render, CompactAndClassicalDrawTheBeatingShape) {
-  RenderOptions o;
-  o.width = 160;
-  o.height = 120;
+  const RenderOptions o = small_image();
   auto r = make(o);
   ASSERT_NE(r, nullptr);
   const MeshSequence seq = synthetic_beating_mesh(3, 8);
@@ -86,16 +93,10 @@ TEST(Render, CompactAndClassicalDrawTheBeatingShape) {
 // shaders. The object is where expected, frames differ over time, the tessellator amplifies the base
 // mesh (at least level² triangles per patch), and wireframe / section change the picture.
 TEST(Render, TessellatedPatchesDrawTheBeatingShape) {
-  RenderOptions o;
-  o.width = 160;
-  o.height = 120;
+  const RenderOptions o = small_image();
   auto r = make(o);
   ASSERT_NE(r, nullptr);
-  const MeshSequence seq = synthetic_beating_mesh(3, 8);
-  PatchOptions po;
-  po.base_triangles = 200;
-  po.grid = 4;
-  const PatchMesh pm = build_patch_mesh(seq, po);
+  const auto [seq, po, pm] = test::beating_patches(3, 8, 200, 4);
   ASSERT_GT(pm.triangles.size(), 50u);
   r->patches().load(pm);
   PatchDrawState st;
@@ -149,9 +150,7 @@ TEST(Render, PhantomThroughTheTessellationPipeline) {
   pat.base_triangles = 300;
   pat.grid = 4;
   const PatchMesh pm = build_patch_mesh(seq, pat);
-  RenderOptions o;
-  o.width = 160;
-  o.height = 120;
+  const RenderOptions o = small_image();
   auto r = make(o);
   ASSERT_NE(r, nullptr);
   r->patches().load(pm);

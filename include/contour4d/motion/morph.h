@@ -30,9 +30,12 @@ struct MorphOptions {
   int projection_iterations = 6;   //!< regularised projection rounds (RbfProject)
   double stiffness = 1.0;          //!< weight of the Laplacian term against the closest-point term
   int relax_iterations = 4;        //!< tangential relaxation rounds, each ended by an exact re-projection
-  int relax_sweeps = 100;          //!< Jacobi sweeps per round in the tangent planes (cheap)
+  int relax_sweeps = 400;          //!< Jacobi sweeps per round in the tangent planes (cheap)
   double relax_step = 0.5;         //!< fraction of the tangential move per sweep
   double spring_weight = 0.0;      //!< relaxation: share of springs (frame-0 edge lengths) against the umbrella
+  double shape_weight = 0.5;       //!< relaxation: share of the equilateral pull (each triangle draws the vertex towards
+                                   //!< the apex of the equilateral triangle on its opposite edge) against the umbrella;
+                                   //!< undoes the anisotropy that contraction leaves and the umbrella keeps
                                    //!< (uniform Laplacian); springs keep frame 0's shapes but can tangle
 };
 
