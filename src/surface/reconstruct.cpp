@@ -564,8 +564,18 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         const std::uint32_t a = n.chain[k], c = n.chain[(k + 1) % n.chain.size()];
         constrained.push_back({std::min(a, c), std::max(a, c)});
       }
+    // Where the contours had to be sampled finer than `edge` (tight bends keep within the contour
+    // tolerance), triangles of `edge` against them would be poorly shaped: the target follows the
+    // typical contour edge, down to half of `edge`.
+    std::vector<double> lengths;
+    for (const auto& e : constrained) lengths.push_back(distance(mesh.positions[e[0]], mesh.positions[e[1]]));
+    double target = opt.edge;
+    if (!lengths.empty()) {
+      std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+      target = std::clamp(1.1 * lengths[lengths.size() / 2], 0.5 * opt.edge, opt.edge);
+    }
     RemeshOptions mo;
-    mo.edge = opt.edge;
+    mo.edge = target;
     mo.iterations = opt.final_remesh_iterations;
     mo.split_constraints = false;
     remesh_isotropic(mesh, constrained, fixed, mo);
