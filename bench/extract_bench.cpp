@@ -127,10 +127,10 @@ void BM_ExtractLVGaussian(benchmark::State& state) {
   run(state, o);
 }
 
-BENCHMARK(BM_ExtractAllLabels)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ExtractLV)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ExtractLVRawStaircase)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ExtractLVGaussian)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExtractAllLabels)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ExtractLV)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ExtractLVRawStaircase)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ExtractLVGaussian)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -10,8 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <set>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace c4d {
 namespace {
@@ -87,16 +87,15 @@ double angle_at(const Vec3& p, const Vec3& q, const Vec3& r) {
 std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
                                 const FlipOptions& options) {
   using Edge = std::pair<std::uint32_t, std::uint32_t>;
-  const std::set<Edge> fixed_edges = [&] {
-    std::set<Edge> s;
-    for (const auto& e : constrained) s.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
-    return s;
-  }();
+  auto key = [](std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; };
+  std::unordered_set<std::uint64_t> fixed_edges;
+  for (const auto& e : constrained) fixed_edges.insert(key(std::min(e[0], e[1]), std::max(e[0], e[1])));
   // Directed edge a→b → triangle holding it.
-  std::map<Edge, std::size_t> owner;
+  std::unordered_map<std::uint64_t, std::size_t> owner;
   auto& tris = mesh.triangles;
+  owner.reserve(3 * tris.size());
   for (std::size_t t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) owner[{tris[t][k], tris[t][(k + 1) % 3]}] = t;
+    for (int k = 0; k < 3; ++k) owner[key(tris[t][k], tris[t][(k + 1) % 3])] = t;
   const auto& x = mesh.positions;
   const double cos_dihedral = std::cos(options.max_dihedral_deg * 3.14159265358979323846 / 180.0);
   auto third = [&](std::size_t t, std::uint32_t a, std::uint32_t b) {
@@ -109,16 +108,18 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
     std::size_t flipped_now = 0;
     // Deterministic order: undirected edges sorted by their vertex ids.
     std::vector<Edge> edges;
-    for (const auto& [e, t] : owner)
-      if (e.first < e.second) edges.push_back(e);
+    for (const auto& tri : tris)
+      for (int k = 0; k < 3; ++k)
+        if (tri[k] < tri[(k + 1) % 3]) edges.push_back({tri[k], tri[(k + 1) % 3]});
+    std::sort(edges.begin(), edges.end());
     for (const Edge& e : edges) {
       const auto [a, b] = e;
-      if (fixed_edges.count(e)) continue;
-      const auto i1 = owner.find({a, b}), i2 = owner.find({b, a});
+      if (fixed_edges.count(key(a, b))) continue;
+      const auto i1 = owner.find(key(a, b)), i2 = owner.find(key(b, a));
       if (i1 == owner.end() || i2 == owner.end()) continue;  // boundary or already flipped away
       const std::size_t t1 = i1->second, t2 = i2->second;
       const std::uint32_t c = third(t1, a, b), d = third(t2, a, b);
-      if (c == d || owner.count({c, d}) || owner.count({d, c})) continue;
+      if (c == d || owner.count(key(c, d)) || owner.count(key(d, c))) continue;
       if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= 3.14159265358979323846 + 1e-9) continue;
       const Vec3 n1 = cross(x[b] - x[a], x[c] - x[a]), n2 = cross(x[a] - x[b], x[d] - x[b]);
       const double l1 = norm(n1), l2 = norm(n2);
@@ -132,12 +133,12 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
       // New triangles (c,a,d) and (c,d,b) must face the same way as the pair did (no fold).
       const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
       if (dot(m1, n) <= 0 || dot(m2, n) <= 0) continue;
-      owner.erase({a, b});
-      owner.erase({b, a});
+      owner.erase(key(a, b));
+      owner.erase(key(b, a));
       tris[t1] = {c, a, d};
       tris[t2] = {c, d, b};
       for (std::size_t t : {t1, t2})
-        for (int k = 0; k < 3; ++k) owner[{tris[t][k], tris[t][(k + 1) % 3]}] = t;
+        for (int k = 0; k < 3; ++k) owner[key(tris[t][k], tris[t][(k + 1) % 3])] = t;
       ++flipped_now;
     }
     flips += flipped_now;
