@@ -26,7 +26,7 @@ struct SurfaceOptions {
   bool rows = false;             //!< true: 1→1 bands get interpolated rows about edge·√3/2 apart instead of
                                  //!< remeshing (about 5× faster, fewer well-shaped triangles on real contours)
   bool remesh = true;            //!< isotropic remeshing (CGAL) of the bands without rows (branchings; all bands when rows = false)
-  int remesh_iterations = 5;     //!< remeshing rounds
+  int remesh_iterations = 5;     //!< remeshing rounds of each band before fairing
   int final_remesh_iterations = 3;  //!< isotropic remeshing rounds of the whole faired surface, contours kept as
                                     //!< fixed chains of edges (evens out triangles that fairing stretched at
                                     //!< branchings and caps); 0: none. Not done when rows = true
