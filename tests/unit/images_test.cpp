@@ -13,7 +13,11 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
 
 #include "contour4d/core/errors.h"
 #include "contour4d/extract/mask_contours.h"
@@ -503,6 +507,85 @@ TEST(LabelImagesBadInput, EachFailureHasItsOwnCode) {
   EXPECT_EQ(code_of([&] { read_label_series(dir / "lone.mhd"); }), ErrorCode::MissingCompanion);
   std::ofstream(dir / "zero.nii").close();
   EXPECT_EQ(code_of([&] { read_label_series(dir / "zero.nii"); }), ErrorCode::EmptyFile);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace c4d
+
+// End to end through the CLI: each bad image input gets its own exit code and leaves nothing behind
+// (`extract` and `reconstruct`), and the Sunnybrook reader names a missing DICOM image.
+namespace c4d {
+namespace {
+
+int run_cli(const std::string& args) {
+  const std::string cmd = std::string(C4D_CLI) + " " + args + " >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(LabelImagesCli, BadInputsExitWithTheirCodeAndWriteNothing) {
+  ASSERT_TRUE(fs::exists(C4D_CLI)) << "CLI not built: " << C4D_CLI;
+  const fs::path dir = temp_dir("cli_bad");
+  const fs::path in = dir / "in", out = dir / "out";
+  fs::create_directories(in);
+  fs::create_directories(out);
+  const Grid g = rasterise(ellipsoid(10, 8, 12), {30, 30, 5}, {1, 1, 5}, 1);
+  write_label_volume(in / "good.nii.gz", {g.vol});
+  write_label_volume(in / "half.nii.gz", {g.vol}, {ImagePixel::Float32, 0.5});
+  LabelVolume flat = g.vol;
+  flat.dims[2] = 1;
+  flat.labels.resize(30 * 30);
+  write_label_volume(in / "flat.nrrd", {flat}, {ImagePixel::Int16, 1.0, true});
+  {
+    std::ifstream f(in / "good.nii.gz", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(f)), {});
+    std::ofstream(in / "truncated.nii.gz", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  fs::create_directories(in / "sizes");
+  write_label_volume(in / "sizes" / "a.nii.gz", {g.vol});
+  write_label_volume(in / "sizes" / "b.nii.gz", {rasterise(ellipsoid(10, 8, 12), {32, 30, 5}, {1, 1, 5}).vol});
+  LabelVolume empty = g.vol;
+  std::fill(empty.labels.begin(), empty.labels.end(), 0);
+  write_label_volume(in / "empty.nii.gz", {empty});
+  std::ofstream(in / "notanimage.nii") << "this is not a NIfTI file\n";
+
+  // A Sunnybrook folder whose contour file names a DICOM image that is absent.
+  const fs::path sb = fs::path(C4D_DATA_DIR) / "sunnybrook-SC-HF-I-1";
+  ASSERT_TRUE(fs::is_directory(sb)) << "real data folder missing: " << sb;
+  const fs::path sbc = in / "sunnybrook";
+  fs::copy(sb, sbc, fs::copy_options::recursive);
+  std::vector<fs::path> dicoms;
+  for (const auto& e : fs::directory_iterator(sbc / "dicoms_contoured")) dicoms.push_back(e.path());
+  std::sort(dicoms.begin(), dicoms.end());
+  ASSERT_FALSE(dicoms.empty());
+  fs::remove(dicoms.front());
+
+  struct Case {
+    std::string input, extra;
+    ErrorCode code;
+  };
+  const Case cases[] = {
+      {(in / "half.nii.gz").string(), "", ErrorCode::Format},           // non-integer labels
+      {(in / "flat.nrrd").string(), "", ErrorCode::Format},             // a 2D image
+      {(in / "sizes").string(), "", ErrorCode::Format},                 // frames of different sizes
+      {(in / "truncated.nii.gz").string(), "", ErrorCode::Parse},       // corrupt (truncated) file
+      {(in / "notanimage.nii").string(), "", ErrorCode::Parse},         // not an image at all
+      {(in / "empty.nii.gz").string(), "", ErrorCode::UnknownLabel},    // no label in any frame
+      {(in / "good.nii.gz").string(), "--label 7", ErrorCode::UnknownLabel},  // the asked label is absent
+      {sbc.string(), "", ErrorCode::MissingCompanion},                  // a contour's DICOM image is missing
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.input + " " + c.extra);
+    EXPECT_EQ(run_cli("extract '" + c.input + "' " + c.extra + " -o '" + (out / "x.json").string() + "'"),
+              static_cast<int>(c.code));
+    EXPECT_EQ(run_cli("reconstruct '" + c.input + "' " + c.extra + " -o '" + (out / "mesh").string() + "'"),
+              static_cast<int>(c.code));
+    EXPECT_TRUE(fs::is_empty(out)) << "a failed run left files behind";
+  }
+  // The good file goes through.
+  EXPECT_EQ(run_cli("extract '" + (in / "good.nii.gz").string() + "' -o '" + (out / "x.json").string() + "'"), 0);
+  EXPECT_TRUE(fs::exists(out / "x.json"));
   fs::remove_all(dir);
 }
 
