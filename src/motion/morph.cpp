@@ -19,6 +19,7 @@
 #include <set>
 
 #include <Eigen/Sparse>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "contour4d/connect/similarity.h"
@@ -316,6 +317,20 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   std::vector<std::vector<double>> rest(nv);
   for (std::size_t i = 0; i < nv; ++i)
     for (std::uint32_t j : nb[i]) rest[i].push_back(distance(frame0.positions[i], frame0.positions[j]));
+  // The same adjacency as flat arrays for the relaxation's inner loop.
+  std::vector<std::size_t> ring_start(nv + 1, 0), opp_start(nv + 1, 0);
+  std::vector<std::uint32_t> ring_index, opp_index;
+  std::vector<double> ring_rest;
+  for (std::size_t i = 0; i < nv; ++i) {
+    ring_index.insert(ring_index.end(), nb[i].begin(), nb[i].end());
+    ring_rest.insert(ring_rest.end(), rest[i].begin(), rest[i].end());
+    ring_start[i + 1] = ring_index.size();
+    for (const auto& [j, k] : opposite[i]) {
+      opp_index.push_back(j);
+      opp_index.push_back(k);
+    }
+    opp_start[i + 1] = opp_index.size() / 2;
+  }
   // Pinned chain vertices are kept at least this far apart (a fraction of the median edge).
   std::vector<double> edge_lengths;
   for (const Triangle& tri : frame0.triangles)
@@ -347,7 +362,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
 
     // 1. The paper's RBF from the matched chain points (subsampled as sources).
     std::vector<Vec3> src, dst;
-    const std::size_t budget = static_cast<std::size_t>(std::max(1, opt.sources_per_contour)) *
+    const int per_contour = project ? opt.guess_sources_per_contour : opt.sources_per_contour;
+    const std::size_t budget = static_cast<std::size_t>(std::max(1, per_contour)) *
                                static_cast<std::size_t>(std::max(1, fr.matched));
     const std::size_t stride = std::max<std::size_t>(1, matched.size() / budget);
     for (std::size_t k = 0; k < matched.size(); k += stride) {
@@ -394,7 +410,10 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         x = from_matrix(solver.solve(to_matrix(p) + ref_term));
         for (const auto& [v, q] : pins) x[v] = q;
       }
-      std::vector<Vec3> p = proj.project(x);
+      // The normals of the landing triangles serve the first relaxation round (each round's closing
+      // projection gives the next one's), so no pass over the tree is spent on normals alone.
+      std::vector<Vec3> normals;
+      std::vector<Vec3> p = proj.project(x, &normals);
       double sum = 0, mx = 0;
       for (std::size_t i = 0; i < nv; ++i) {
         if (pinned[i]) continue;
@@ -408,43 +427,56 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
       const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
       for (int r = 0; r < opt.relax_iterations; ++r) {
-        std::vector<Vec3> normals;
-        (void)proj.project(x, &normals);
+        std::vector<Vec3> vel(nv, Vec3{});
+        std::vector<Vec3> moved = x;
+        const double beta = opt.relax_momentum;
         for (int sweep = 0; sweep < opt.relax_sweeps; ++sweep) {
-          std::vector<Vec3> moved = x;
-          tbb::parallel_for(std::size_t(0), nv, [&](std::size_t i) {
-            if (pinned[i]) return;
-            // Umbrella (uniform Laplacian) move, optionally blended with springs whose rest lengths are
-            // frame 0's edges scaled by the change of area: the springs' equilibrium is a similar copy
-            // of frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone
-            // can tangle under strong compression, so the default is the umbrella alone.
-            Vec3 d{}, c{};
-            for (std::size_t k = 0; k < nb[i].size(); ++k) {
-              const Vec3 e = x[nb[i][k]] - x[i];
-              const double len = norm(e);
-              c += e;
-              if (len > 0) d += (std::clamp((len - scale * rest[i][k]) / len, -0.3, 0.3)) * e;
-            }
-            d = (opt.spring_weight * d + (1.0 - opt.spring_weight) * c) / static_cast<double>(std::max<std::size_t>(1, nb[i].size()));
-            if (opt.shape_weight > 0 && !opposite[i].empty()) {
-              // Equilateral pull: the mean of the apexes of equilateral triangles raised, in the
-              // tangent plane, on the edges opposite the vertex.
-              Vec3 apex{};
-              for (const auto& [j, k] : opposite[i]) {
-                const Vec3 e = x[k] - x[j];
-                const Vec3 side = cross(normals[i], e);
-                const double ls = norm(side);
-                apex += 0.5 * (x[j] + x[k]) + (ls > 0 ? (0.8660254037844386 * norm(e) / ls) * side : Vec3{});
+          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+              if (pinned[i]) continue;
+              const Vec3 xi = x[i], n = normals[i];
+              const std::uint32_t* ring = ring_index.data() + ring_start[i];
+              const std::size_t m = ring_start[i + 1] - ring_start[i];
+              if (m == 0) continue;
+              // Umbrella (uniform Laplacian) move, optionally blended with springs whose rest lengths are
+              // frame 0's edges scaled by the change of area: the springs' equilibrium is a similar copy of
+              // frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone can
+              // tangle under strong compression, so the default is the umbrella alone.
+              Vec3 c{}, g{}, mid{}, sp{};
+              for (std::size_t k = 0; k < m; ++k) {
+                const Vec3 e = x[ring[k]] - xi;
+                c += e;
+                if (opt.spring_weight != 0) {
+                  const double len = norm(e);
+                  if (len > 0) sp += std::clamp((len - scale * ring_rest[ring_start[i] + k]) / len, -0.3, 0.3) * e;
+                }
               }
-              const Vec3 pull = apex / static_cast<double>(opposite[i].size()) - x[i];
-              d = (1.0 - opt.shape_weight) * d + opt.shape_weight * pull;
+              if (opt.shape_weight > 0) {
+                // Equilateral pull: the mean of the apexes of equilateral triangles raised, in the tangent
+                // plane, on the edges (j, k) opposite the vertex: midpoint + √3/2 · n × e · |e| / |n × e|.
+                for (std::size_t k = opp_start[i]; k < opp_start[i + 1]; ++k) {
+                  const Vec3 a = x[opp_index[2 * k]] - xi, b = x[opp_index[2 * k + 1]] - xi;
+                  const Vec3 e = b - a;
+                  mid += a + b;
+                  const double ee = dot(e, e), ne = dot(n, e), s2 = ee - ne * ne;
+                  if (s2 > 1e-300) g += std::sqrt(ee / s2) * e;
+                }
+              }
+              const double inv = 1.0 / static_cast<double>(m);
+              Vec3 d = (opt.spring_weight * sp + (1.0 - opt.spring_weight) * c) * inv;
+              if (opt.shape_weight > 0) {
+                const double no = static_cast<double>(opp_start[i + 1] - opp_start[i]);
+                const Vec3 pull = (0.5 * mid + 0.8660254037844386 * cross(n, g)) / std::max(1.0, no);
+                d = (1.0 - opt.shape_weight) * d + opt.shape_weight * pull;
+              }
+              d -= dot(d, n) * n;
+              vel[i] = beta * vel[i] + opt.relax_step * d;
+              moved[i] = xi + vel[i];
             }
-            d -= dot(d, normals[i]) * normals[i];
-            moved[i] = x[i] + opt.relax_step * d;
           });
-          x = std::move(moved);
+          std::swap(x, moved);
         }
-        std::vector<Vec3> q = proj.project(x);
+        std::vector<Vec3> q = proj.project(x, &normals);
         for (std::size_t i = 0; i < nv; ++i)
           if (!pinned[i]) x[i] = q[i];
       }

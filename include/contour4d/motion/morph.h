@@ -22,16 +22,21 @@ enum class MorphMethod {
 struct MorphOptions {
   MorphMethod method = MorphMethod::RbfProject;  //!< see MorphMethod
   int rbf_steps = 10;              //!< RBF sub-steps against crossing paths (paper: 10); RbfProject uses 1
-  int sources_per_contour = 48;    //!< chain points per matched contour used as RBF sources
+  int sources_per_contour = 48;    //!< chain points per matched contour used as RBF sources (Rbf)
+  int guess_sources_per_contour = 24;  //!< the same for RbfProject's first-guess RBF: the projection and relaxation
+                                       //!< refine the rest (48 gave the same meshes at 4× the RBF time)
   double threshold = 0.3;          //!< similarity for a chain↔contour match (paper: 30 %)
   double pin_spacing = 0.0;        //!< > 0: also hold frame-0 contour vertices on later contours, at least this ×
                                    //!< the median edge apart; 0: none held (they guide the RBF, the fit comes
                                    //!< from each frame's own surface; best triangles)
-  int projection_iterations = 6;   //!< regularised projection rounds (RbfProject)
+  int projection_iterations = 3;   //!< regularised projection rounds (RbfProject); the relaxation re-projects
   double stiffness = 1.0;          //!< weight of the Laplacian term against the closest-point term
   int relax_iterations = 4;        //!< tangential relaxation rounds, each ended by an exact re-projection
-  int relax_sweeps = 400;          //!< Jacobi sweeps per round in the tangent planes (cheap)
+  int relax_sweeps = 100;          //!< sweeps per round in the tangent planes (with momentum, as good as 1600
+                                   //!< plain Jacobi sweeps)
   double relax_step = 0.5;         //!< fraction of the tangential move per sweep
+  double relax_momentum = 0.9;     //!< heavy-ball momentum of the sweeps (0: plain Jacobi); speeds up the slow,
+                                   //!< smooth modes about tenfold, so far fewer sweeps reach the same state
   double spring_weight = 0.0;      //!< relaxation: share of springs (frame-0 edge lengths) against the umbrella
   double shape_weight = 0.5;       //!< relaxation: share of the equilateral pull (each triangle draws the vertex towards
                                    //!< the apex of the equilateral triangle on its opposite edge) against the umbrella;
