@@ -30,6 +30,7 @@ struct ReconstructArgs {
   std::string method = "rbf-project";
   int threads = 0;
   double pin_spacing = MorphOptions{}.pin_spacing;
+  bool vertical = false;
   bool fast = false;
 };
 
@@ -66,6 +67,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
   opt.morph.pin_spacing = a.pin_spacing;
+  opt.morph.vertical_deformation = a.vertical;
   ProgressBar bar;
   opt.progress = [&bar](const char* stage, int done, int total) { bar.update(stage, done, total); };
 
@@ -81,7 +83,7 @@ int run_reconstruct(const ReconstructArgs& a) {
       {"stack_normal", {seq.normal.x, seq.normal.y, seq.normal.z}},
       {"options",
        {{"edge_mm", a.edge}, {"cap", a.cap}, {"method", a.method}, {"threshold", opt.surface.threshold},
-        {"fast", a.fast}, {"pin_spacing", a.pin_spacing}}},
+        {"fast", a.fast}, {"pin_spacing", a.pin_spacing}, {"vertical_deformation", a.vertical}}},
   };
   MeshSequence result;
   if (a.frame >= 0) {
@@ -191,6 +193,9 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
                   "frame-0 contour vertices on later contours, at least this x the median edge apart (exact "
                   "contour vertices, worse triangles where contours shrink)")
       ->capture_default_str();
+  app->add_flag("--vertical-deformation", args->vertical,
+                "where a slice's contours split or merge between frames, first apply Lim et al.'s sine-shaped "
+                "vertical deformation centred on the ridge (eq. 10, Table 1), then match and deform");
   app->add_flag("--fast", args->fast,
                "interpolated rows between slices instead of isotropic remeshing (CGAL) of every band: about 5x "
                "faster, fewer well-shaped triangles on coarse, irregular real contours");

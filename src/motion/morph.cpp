@@ -26,6 +26,8 @@
 #include "contour4d/core/errors.h"
 #include "contour4d/motion/contour_matching.h"
 #include "contour4d/motion/rbf.h"
+#include "contour4d/motion/section.h"
+#include "contour4d/motion/vertical_deformation.h"
 #include "surface_projection_internal.h"
 
 namespace c4d {
@@ -261,6 +263,32 @@ struct Projector {
   }
 };
 
+// Lim et al. 2014, "2D contour topological changes": where a slice's contours split or merge between
+// frames t−1 and t, the mesh (at frame t−1) is first moved along the stack normal by the sine field
+// centred on the ridge, so that its section at the incident slice has frame t's contour count and
+// the matching below finds one-to-one partners there.
+void vertical_predeformation(const Sequence& seq, const std::vector<Triangle>& triangles, int t, const MorphOptions& opt,
+                             std::vector<Vec3>& x) {
+  for (const VerticalMotion& m : vertical_motions(seq, t - 1, t, opt.vertical)) {
+    if (m.direction == VerticalDirection::None) continue;
+    const Frame& before = seq.frames[static_cast<std::size_t>(t - 1)];
+    const Slice* incident = find_slice(before, m.incident_slice);
+    const Slice* complement = find_slice(before, m.complement_slice);
+    if (!incident || !complement) continue;
+    const TriangleMesh current{x, triangles};
+    const auto inc = plane_section(current, slice_plane(seq, *incident));
+    const auto comp = plane_section(current, slice_plane(seq, *complement));
+    const auto& lone = inc.size() == 1 ? inc : comp;
+    const auto& pair = inc.size() == 1 ? comp : inc;
+    if (lone.size() != 1 || pair.size() != 2) continue;  // not the 1↔2 case the paper describes
+    const Ridge ridge = detect_ridge(current, lone[0], pair[0], pair[1], seq.normal, opt.vertical);
+    if (!ridge.found) continue;
+    std::vector<Vec3> incident_points;
+    for (const auto& loop : inc) incident_points.insert(incident_points.end(), loop.begin(), loop.end());
+    apply_vertical_deformation(x, make_vertical_field(seq, m, ridge.points, incident_points, opt.vertical));
+  }
+}
+
 }  // namespace
 
 std::vector<SubMeshLifetime> submesh_lifetimes(const Sequence& seq) {
@@ -353,9 +381,10 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   for (std::size_t t = 1; t < frames; ++t) {
     const std::vector<Vec3>& prev = out.positions.back();
     std::vector<Vec3> x = prev;
+    if (opt.vertical_deformation) vertical_predeformation(seq, frame0.triangles, static_cast<int>(t), opt, x);
     MorphFrameReport& fr = rep.frames[t];
     std::vector<ChainTarget> matched;
-    match_chains(seq, chains, prev, static_cast<int>(t), opt, pin_spacing, matched, fr, rep.events, counts);
+    match_chains(seq, chains, x, static_cast<int>(t), opt, pin_spacing, matched, fr, rep.events, counts);
     std::vector<std::pair<std::uint32_t, Vec3>> pins;
     for (const ChainTarget& m : matched)
       if (m.pinned) pins.push_back({m.vertex, m.position});
@@ -367,7 +396,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
                                static_cast<std::size_t>(std::max(1, fr.matched));
     const std::size_t stride = std::max<std::size_t>(1, matched.size() / budget);
     for (std::size_t k = 0; k < matched.size(); k += stride) {
-      src.push_back(prev[matched[k].vertex]);
+      src.push_back(x[matched[k].vertex]);
       dst.push_back(matched[k].position);
     }
     add_far_point(x, seq.normal, src, dst);

@@ -8,6 +8,7 @@
 
 #include "contour4d/core/mesh.h"
 #include "contour4d/core/stack.h"
+#include "contour4d/motion/vertical_deformation.h"
 
 namespace c4d {
 
@@ -35,6 +36,9 @@ struct MorphOptions {
   int relax_sweeps = 100;          //!< sweeps per round in the tangent planes (with momentum, as good as 1600
                                    //!< plain Jacobi sweeps)
   double relax_step = 0.5;         //!< fraction of the tangential move per sweep
+  bool vertical_deformation = false;  //!< Lim et al.'s sine vertical pre-deformation (eq. 10, Table 1) at slices whose
+                                      //!< contours split or merge, before the matching (vertical_deformation.h)
+  VerticalDeformationOptions vertical;  //!< its options
   double relax_momentum = 0.9;     //!< heavy-ball momentum of the sweeps (0: plain Jacobi); speeds up the slow,
                                    //!< smooth modes about tenfold, so far fewer sweeps reach the same state
   double spring_weight = 0.0;      //!< relaxation: share of springs (frame-0 edge lengths) against the umbrella
