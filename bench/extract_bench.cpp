@@ -116,7 +116,6 @@ void BM_ExtractLV(benchmark::State& state) { run(state, preset({"lv"})); }
 void BM_ExtractLVRawStaircase(benchmark::State& state) {
   MaskExtractOptions o = preset({"lv"});
   o.staircase = c4d::StaircaseSmoothing::None;
-  o.taubin_passes = 0;
   o.resample_mm = 0;
   run(state, o);
 }

@@ -120,19 +120,20 @@ std::vector<Vec2> resample_closed(const std::vector<Vec2>& polygon, const Resamp
   std::vector<std::size_t> kept{0};
   const bool keep_all = options.corner_angle_deg <= 0.0;
   const double scale = std::min(options.edge, total / 6.0);
-  const double cos_limit = std::cos(options.corner_angle_deg * kPi / 180.0);
-  // Turning angle of every input vertex at that scale. A corner must also turn strictly more than
-  // every other vertex within one edge of it: on a tight bend (radius below about an edge) every
-  // vertex turns past the limit, and keeping them all would leave pieces far shorter than an edge
-  // (slivers against them); the bend is then sampled by the density below.
-  std::vector<double> turning(n, 0.0);
-  for (std::size_t i = 0; i < n && !keep_all; ++i) {
+  // Turning angle of every input vertex at that scale, and the mean length of its two arms. A corner
+  // must also turn strictly more than every other vertex within half an edge of it: on a tight bend
+  // (radius below about an edge) every vertex turns past the limit, and keeping them all would leave
+  // pieces far shorter than an edge (slivers against them); the bend is then sampled by the density below.
+  std::vector<double> turning(n, 0.0), arm(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
     const Vec2 a = point_at(p, cum, cum[i] - scale), b = p[i], c = point_at(p, cum, cum[i] + scale);
     const Vec2 u = b - a, w = c - b;
     const double nu = norm(u), nw = norm(w);
-    if (nu > 0 && nw > 0) turning[i] = std::acos(std::clamp(dot(u, w) / (nu * nw), -1.0, 1.0));
+    if (!(nu > 0 && nw > 0)) continue;
+    turning[i] = std::atan2(std::abs(cross(u, w)), dot(u, w));
+    arm[i] = 0.5 * (nu + nw);
   }
-  const double turn_limit = std::acos(std::clamp(cos_limit, -1.0, 1.0));
+  const double turn_limit = std::clamp(options.corner_angle_deg, 0.0, 180.0) * kPi / 180.0;
   auto local_maximum = [&](std::size_t i) {
     for (int dir : {-1, 1})
       for (std::size_t k = 1; k < n; ++k) {
@@ -144,24 +145,14 @@ std::vector<Vec2> resample_closed(const std::vector<Vec2>& polygon, const Resamp
       }
     return true;
   };
-  for (std::size_t i = 1; i < n; ++i) {
-    if (keep_all) {
-      kept.push_back(i);
-      continue;
-    }
-    if (turning[i] > turn_limit && local_maximum(i)) kept.push_back(i);
-  }
+  for (std::size_t i = 1; i < n; ++i)
+    if (keep_all || (turning[i] > turn_limit && local_maximum(i))) kept.push_back(i);
   // Point density (points per mm) at each input vertex: 1/edge on straight parts, more where the
   // contour bends so that the chord deviation e²κ/8 stays within the tolerance.
   std::vector<double> density(n, 1.0 / options.edge);
   if (options.tolerance > 0.0)
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 a = point_at(p, cum, cum[i] - scale), b = p[i], c = point_at(p, cum, cum[i] + scale);
-      const Vec2 u = b - a, w = c - b;
-      const double nu = norm(u), nw = norm(w);
-      if (!(nu > 0 && nw > 0)) continue;
-      const double turn = std::atan2(std::abs(cross(u, w)), dot(u, w));
-      const double kappa = turn / (0.5 * (nu + nw));
+      const double kappa = arm[i] > 0 ? turning[i] / arm[i] : 0.0;
       if (kappa <= 0) continue;
       const double spacing = std::clamp(std::sqrt(8.0 * options.tolerance / kappa), 0.5 * options.edge, options.edge);
       density[i] = 1.0 / spacing;

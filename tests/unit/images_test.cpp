@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_runner.h"
+
 #include "ellipse_distance.h"
 #include <tbb/global_control.h>
 
@@ -518,11 +520,7 @@ TEST(LabelImagesBadInput, EachFailureHasItsOwnCode) {
 namespace c4d {
 namespace {
 
-int run_cli(const std::string& args) {
-  const std::string cmd = std::string(C4D_CLI) + " " + args + " >/dev/null 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+using test::run_cli;
 
 TEST(LabelImagesCli, BadInputsExitWithTheirCodeAndWriteNothing) {
   ASSERT_TRUE(fs::exists(C4D_CLI)) << "CLI not built: " << C4D_CLI;

@@ -3,6 +3,8 @@
 #include "contour4d/io/input.h"
 
 #include <gtest/gtest.h>
+
+#include "cli_runner.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -71,12 +73,7 @@ TEST(Input, LabelSelection) {
   EXPECT_EQ(read_contours(kCorpus / "gpfile" / "good_two_frames_with_lax", t).sequence.frames.size(), 2u);
 }
 
-//! Runs the CLI; returns its exit code.
-int run_cli(const std::string& args) {
-  const std::string cmd = std::string(C4D_CLI) + " " + args + " >/dev/null 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+using test::run_cli;
 
 TEST(ExtractCli, ExitCodesAndNothingWritten) {
   ASSERT_TRUE(fs::exists(C4D_CLI)) << "CLI not built: " << C4D_CLI;
