@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -97,7 +98,7 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
   for (std::size_t t = 0; t < tris.size(); ++t)
     for (int k = 0; k < 3; ++k) owner[key(tris[t][k], tris[t][(k + 1) % 3])] = t;
   const auto& x = mesh.positions;
-  const double cos_dihedral = std::cos(options.max_dihedral_deg * 3.14159265358979323846 / 180.0);
+  const double cos_dihedral = std::cos(options.max_dihedral_deg * std::numbers::pi / 180.0);
   auto third = [&](std::size_t t, std::uint32_t a, std::uint32_t b) {
     for (std::uint32_t v : tris[t])
       if (v != a && v != b) return v;
@@ -120,7 +121,7 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
       const std::size_t t1 = i1->second, t2 = i2->second;
       const std::uint32_t c = third(t1, a, b), d = third(t2, a, b);
       if (c == d || owner.count(key(c, d)) || owner.count(key(d, c))) continue;
-      if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= 3.14159265358979323846 + 1e-9) continue;
+      if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= std::numbers::pi + 1e-9) continue;
       const Vec3 n1 = cross(x[b] - x[a], x[c] - x[a]), n2 = cross(x[a] - x[b], x[d] - x[b]);
       const double l1 = norm(n1), l2 = norm(n2);
       // Near-flat triangles (normal undefined: twice the area below 2 % of the squared edge, about a
