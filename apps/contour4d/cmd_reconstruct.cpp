@@ -32,6 +32,7 @@ struct ReconstructArgs {
   double pin_spacing = MorphOptions{}.pin_spacing;
   bool vertical = false;
   bool fast = false;
+  std::string tiling = "bands";
 };
 
 nlohmann::json connections_json(const std::vector<Connection>& cs) {
@@ -64,6 +65,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   opt.surface.label = read.format == "label-image" ? std::string() : a.in.label;
   opt.surface.edge = a.edge;
   opt.surface.rows = a.fast;
+  opt.surface.tiling = a.tiling == "delaunay" ? Tiling::Delaunay : Tiling::Bands;
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
   opt.morph.pin_spacing = a.pin_spacing;
@@ -83,7 +85,7 @@ int run_reconstruct(const ReconstructArgs& a) {
       {"stack_normal", {seq.normal.x, seq.normal.y, seq.normal.z}},
       {"options",
        {{"edge_mm", a.edge}, {"cap", a.cap}, {"method", a.method}, {"threshold", opt.surface.threshold},
-        {"fast", a.fast}, {"pin_spacing", a.pin_spacing}, {"vertical_deformation", a.vertical}}},
+        {"fast", a.fast}, {"tiling", a.tiling}, {"pin_spacing", a.pin_spacing}, {"vertical_deformation", a.vertical}}},
   };
   MeshSequence result;
   if (a.frame >= 0) {
@@ -107,6 +109,7 @@ int run_reconstruct(const ReconstructArgs& a) {
                         {"volume_mm3", signed_volume(result.frame(f))},
                         {"matched_contours", mf.matched},
                         {"rbf_sources", mf.sources},
+                        {"angle_repair_moves", mf.angle_repairs},
                         {"projection_mean_mm", mf.projection_mean},
                         {"projection_max_mm", mf.projection_max},
                         {"surface", surface_json(rr.surfaces[f])}});
@@ -196,6 +199,11 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_flag("--vertical-deformation", args->vertical,
                 "where a slice's contours split or merge between frames, first apply Lim et al.'s sine-shaped "
                 "vertical deformation centred on the ridge (eq. 10, Table 1), then match and deform");
+  app->add_option("--tiling", args->tiling,
+                  "surface between slices: bands (default: optimal bands, bridges at branchings) or delaunay (Lim et "
+                  "al.'s constrained Delaunay of the projected slices with chordal-axis lifting points)")
+      ->check(CLI::IsMember({"bands", "delaunay"}))
+      ->capture_default_str();
   app->add_flag("--fast", args->fast,
                "interpolated rows between slices instead of isotropic remeshing (CGAL) of every band: about 5x "
                "faster, fewer well-shaped triangles on coarse, irregular real contours");

@@ -28,7 +28,8 @@
 #include "contour4d/motion/rbf.h"
 #include "contour4d/motion/section.h"
 #include "contour4d/motion/vertical_deformation.h"
-#include "surface_projection_internal.h"
+#include "contour4d/surface/angle_repair.h"
+#include "contour4d/surface/surface_projector.h"
 
 namespace c4d {
 namespace {
@@ -509,6 +510,12 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         for (std::size_t i = 0; i < nv; ++i)
           if (!pinned[i]) x[i] = q[i];
       }
+      // 4. The few triangles the relaxation leaves thin (saddles of splitting contours): their vertices
+      //    move within the frame's surface to maximise their ring's smallest angle.
+      if (opt.angle_repair.passes > 0)
+        fr.angle_repairs = repair_small_angles(
+            x, frame0.triangles, pinned,
+            [&](std::uint32_t v, Vec3 c) { return surface.closest(c, nullptr, &proj.hints[v]); }, opt.angle_repair);
     }
     for (const Vec3& p : x)
       if (!is_finite(p))

@@ -3,6 +3,5 @@ target_sources(contour4d PRIVATE
   motion/rbf.cpp
   motion/contour_matching.cpp
   motion/section.cpp
-  motion/surface_projection.cpp
   motion/morph.cpp
   motion/reconstruct4d.cpp)

@@ -2,9 +2,12 @@
 target_sources(contour4d PRIVATE
   surface/resample.cpp
   surface/tiling.cpp
+  surface/delaunay_tiling.cpp
   surface/capping.cpp
   surface/smoothing.cpp
   surface/fairing.cpp
   surface/refine.cpp
+  surface/angle_repair.cpp
+  surface/surface_projector.cpp
   surface/mesh_check.cpp
   surface/reconstruct.cpp)

@@ -9,6 +9,7 @@
 #include "contour4d/core/mesh.h"
 #include "contour4d/core/stack.h"
 #include "contour4d/motion/vertical_deformation.h"
+#include "contour4d/surface/angle_repair.h"
 
 namespace c4d {
 
@@ -39,6 +40,9 @@ struct MorphOptions {
   bool vertical_deformation = false;  //!< Lim et al.'s sine vertical pre-deformation (eq. 10, Table 1) at slices whose
                                       //!< contours split or merge, before the matching (vertical_deformation.h)
   VerticalDeformationOptions vertical;  //!< its options
+  AngleRepairOptions angle_repair;  //!< after the relaxation (RbfProject): vertices of triangles with an angle below
+                                    //!< angle_repair.target_deg move within the surface to maximise their ring's
+                                    //!< smallest angle (passes = 0: off)
   double relax_momentum = 0.9;     //!< heavy-ball momentum of the sweeps (0: plain Jacobi); speeds up the slow,
                                    //!< smooth modes about tenfold, so far fewer sweeps reach the same state
   double spring_weight = 0.0;      //!< relaxation: share of springs (frame-0 edge lengths) against the umbrella
@@ -69,6 +73,7 @@ struct SubMeshLifetime {
 struct MorphFrameReport {
   int matched = 0;             //!< section↔contour matches used as RBF constraints
   int sources = 0;             //!< RBF source points
+  std::size_t angle_repairs = 0;  //!< vertex moves of the small-angle repair
   double projection_max = 0;   //!< max distance (mm) from the frame's surface before the final projection
   double projection_mean = 0;  //!< mean of the same
 };

@@ -10,9 +10,17 @@
 #include "contour4d/connect/connectivity.h"
 #include "contour4d/core/mesh.h"
 #include "contour4d/core/stack.h"
+#include "contour4d/surface/angle_repair.h"
 #include "contour4d/surface/capping.h"
 
 namespace c4d {
+
+//! How the surface between two connected slices is triangulated.
+enum class Tiling {
+  Bands,     //!< optimal bands between the contours (Fuchs et al. 1977; bridges for branching), then remeshed
+  Delaunay,  //!< the paper's: constrained Delaunay of the projected symmetric difference, CAT lifting points
+             //!< (Barequet & Sharir 1996; delaunay_tiling.h), then remeshed
+};
 
 //! Options of the one-frame surface.
 struct SurfaceOptions {
@@ -23,6 +31,8 @@ struct SurfaceOptions {
   CapStyle caps = CapStyle::Rounded;  //!< how ends are closed
   double cap_height = 0.5;       //!< Rounded cap height as a fraction of the adjacent slice spacing (≤ 0.5)
   double threshold = 0.3;        //!< similarity threshold of the connectivity tree (paper: 30 %)
+  Tiling tiling = Tiling::Bands;  //!< triangulation between slices (Delaunay falls back to Bands, with a warning,
+                                  //!< on a slice pair it cannot tile)
   bool rows = false;             //!< true: 1→1 bands get interpolated rows about edge·√3/2 apart instead of
                                  //!< remeshing (about 5× faster, fewer well-shaped triangles on real contours)
   bool remesh = true;            //!< isotropic remeshing (CGAL) of the bands without rows (branchings; all bands when rows = false)
@@ -30,6 +40,8 @@ struct SurfaceOptions {
   int final_remesh_iterations = 3;  //!< isotropic remeshing rounds of the whole faired surface, contours kept as
                                     //!< fixed chains of edges (evens out triangles that fairing stretched at
                                     //!< branchings and caps); 0: none. Not done when rows = true
+  AngleRepairOptions angle_repair;  //!< last: vertices of triangles with an angle below angle_repair.target_deg move
+                                    //!< within the surface to maximise their ring's smallest angle (passes = 0: off)
   bool fairing = true;           //!< thin-plate fairing with the contours fixed: smooth across contours (fairing.h)
   double cap_shape_weight = 0.0; //!< fairing weight keeping the initial Rounded dome shape (0: the dome is faired freely and continues the wall; its tip is still clamped to cap_height)
   int smoothing_iterations = 0;  //!< λ|μ|ε pass pairs after fairing (0: none); contour vertices fixed

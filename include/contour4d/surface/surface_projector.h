@@ -1,5 +1,7 @@
 #pragma once
-// Closest points on a triangle mesh (CGAL AABB tree); private to the motion stage.
+//! \file surface_projector.h
+//! \brief Closest points on a triangle mesh (CGAL AABB tree), with warm starts for repeated queries:
+//! the projection of the 4D morph and the surface snap of the small-angle repair.
 #include <cstdint>
 #include <memory>
 
@@ -7,6 +9,7 @@
 
 namespace c4d {
 
+//! Closest-point queries on one triangle mesh; the tree is built once. Thread-safe queries.
 class SurfaceProjector {
  public:
   explicit SurfaceProjector(const TriangleMesh& surface);

@@ -1,6 +1,6 @@
 // Closest-point queries with CGAL's AABB tree (CGAL User Manual, "3D Fast Intersection and Distance
 // Computation"), on a triangle soup kept alongside so the hit triangle's normal is known.
-#include "surface_projection_internal.h"
+#include "contour4d/surface/surface_projector.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

@@ -1,0 +1,228 @@
+// Optimisation-based smoothing of small angles (Freitag & Ollivier-Gooch, "Tetrahedral mesh
+// improvement using swapping and smoothing", 1997, applied to triangles on a surface): the local
+// quality step that Lim et al. 2014 ask for where triangle quality degrades ("Surface Smoothing and
+// Refinement"; "4D Morphing of the Heart Model"). Laplacian-type relaxation makes the ring even, but
+// where the surface is stretched one way and squeezed the other (a saddle forming as contours split)
+// its equilibrium still leaves thin triangles; maximising the ring's smallest angle directly removes
+// most of them. Only vertices of bad triangles move, so the rest of the mesh is untouched.
+#include "contour4d/surface/angle_repair.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+#include "contour4d/metrics/topology.h"
+
+namespace c4d {
+
+double min_angle_deg(Vec3 a, Vec3 b, Vec3 c) {
+  const double la = distance(b, c), lb = distance(c, a), lc = distance(a, b);
+  if (!(la > 0 && lb > 0 && lc > 0)) return 0.0;
+  // The smallest angle faces the shortest side.
+  double s = la, p = lb, q = lc;
+  if (p < s) std::swap(s, p);
+  if (q < s) std::swap(s, q);
+  const double cosv = std::clamp((p * p + q * q - s * s) / (2 * p * q), -1.0, 1.0);
+  return std::acos(cosv) * 180.0 / std::numbers::pi;
+}
+
+namespace {
+
+Vec3 face_normal(const std::vector<Vec3>& x, const Triangle& t) {
+  return cross(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]);
+}
+
+// Triangles binned by the cells their bounding boxes touch: the candidates that a moved vertex's
+// triangles could cut through.
+struct TriangleGrid {
+  double cell = 1.0;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> bins;
+  static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) {
+    return (i & 0x1fffff) | ((j & 0x1fffff) << 21) | ((k & 0x1fffff) << 42);
+  }
+  std::int64_t at(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
+  template <class F>
+  void visit(Vec3 lo, Vec3 hi, F&& f) const {
+    for (std::int64_t i = at(lo.x); i <= at(hi.x); ++i)
+      for (std::int64_t j = at(lo.y); j <= at(hi.y); ++j)
+        for (std::int64_t k = at(lo.z); k <= at(hi.z); ++k) f(key(i, j, k));
+  }
+};
+
+void grow(Vec3& lo, Vec3& hi, Vec3 p) {
+  lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+  hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+}
+
+TriangleGrid bin_triangles(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles) {
+  TriangleGrid g;
+  std::vector<double> lengths;
+  for (const Triangle& t : triangles) lengths.push_back(distance(x[t[0]], x[t[1]]));
+  if (!lengths.empty()) {
+    std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+    g.cell = std::max(1e-6, 2.0 * lengths[lengths.size() / 2]);
+  }
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (std::uint32_t w : triangles[f]) grow(lo, hi, x[w]);
+    if (!is_finite(lo) || !is_finite(hi)) continue;
+    g.visit(lo, hi, [&](std::int64_t k) { g.bins[k].push_back(static_cast<std::uint32_t>(f)); });
+  }
+  return g;
+}
+
+// True when one of `fs` (the triangles of a vertex at its new position) intersects a triangle of
+// the grid other than through a shared vertex or edge.
+bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
+                     const std::vector<std::uint32_t>& fs, const TriangleGrid& grid) {
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (std::uint32_t f : fs)
+    for (std::uint32_t w : triangles[f]) grow(lo, hi, x[w]);
+  // Neighbours moved since binning by well under a cell: widen the box by half a cell.
+  const Vec3 pad{0.5 * grid.cell, 0.5 * grid.cell, 0.5 * grid.cell};
+  std::vector<std::uint32_t> near;
+  grid.visit(lo - pad, hi + pad, [&](std::int64_t k) {
+    const auto it = grid.bins.find(k);
+    if (it != grid.bins.end()) near.insert(near.end(), it->second.begin(), it->second.end());
+  });
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  TriangleMesh sub;
+  sub.positions = x;  // indices stay global
+  std::vector<char> in_ring;
+  for (std::uint32_t f : fs) {
+    sub.triangles.push_back(triangles[f]);
+    in_ring.push_back(1);
+  }
+  for (std::uint32_t f : near)
+    if (std::find(fs.begin(), fs.end(), f) == fs.end()) {
+      sub.triangles.push_back(triangles[f]);
+      in_ring.push_back(0);
+    }
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  if (count_self_intersections(sub, &pairs, sub.triangles.size()) == 0) return false;
+  for (const auto& [i, j] : pairs)
+    if (in_ring[i] || in_ring[j]) return true;
+  return false;
+}
+
+std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                     const std::vector<std::vector<std::uint32_t>>& ring, const std::vector<char>& fixed,
+                     const SurfaceSnap& snap, const AngleRepairOptions& options) {
+  const double cos_fold = 0.5;  // a ring triangle may turn by at most 60°
+  std::size_t moves = 0;
+  for (int pass = 0; pass < options.passes; ++pass) {
+    std::vector<std::uint32_t> todo;
+    for (const Triangle& t : triangles)
+      if (min_angle_deg(positions[t[0]], positions[t[1]], positions[t[2]]) < options.target_deg)
+        for (std::uint32_t v : t)
+          if (!fixed[v]) todo.push_back(v);
+    std::sort(todo.begin(), todo.end());
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    if (todo.empty()) break;
+    const TriangleGrid grid = bin_triangles(positions, triangles);
+    std::size_t pass_moves = 0;
+    for (std::uint32_t v : todo) {
+      const auto& fs = ring[v];
+      if (fs.empty()) continue;
+      std::vector<Vec3> n0;
+      Vec3 n{};
+      double len = 0;
+      int edges = 0;
+      for (std::uint32_t f : fs) {
+        n0.push_back(face_normal(positions, triangles[f]));
+        n += n0.back();
+        for (std::uint32_t w : triangles[f])
+          if (w != v) {
+            len += distance(positions[w], positions[v]);
+            ++edges;
+          }
+      }
+      if (norm(n) <= 0 || edges == 0) continue;
+      n = normalized(n);
+      len /= edges;
+      // Tangent basis.
+      const Vec3 helper = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+      const Vec3 e1 = normalized(cross(n, helper)), e2 = cross(n, e1);
+      auto quality = [&](Vec3 p) {
+        const Vec3 keep = positions[v];
+        positions[v] = p;
+        double q = 180.0;
+        for (std::size_t k = 0; k < fs.size(); ++k) {
+          const Triangle& t = triangles[fs[k]];
+          const Vec3 nk = face_normal(positions, t);
+          const double a = norm(nk), b = norm(n0[k]);
+          if (!(a > 0) || dot(nk, n0[k]) < cos_fold * a * b) {
+            q = -1.0;
+            break;
+          }
+          q = std::min(q, min_angle_deg(positions[t[0]], positions[t[1]], positions[t[2]]));
+        }
+        positions[v] = keep;
+        return q;
+      };
+      Vec3 best = positions[v];
+      double best_q = quality(best);
+      const double start_q = best_q;
+      double h = options.first_step * len;
+      for (int step = 0; step < options.steps && h > 1e-4 * len; ++step) {
+        Vec3 cand_best = best;
+        double cand_q = best_q;
+        for (int d = 0; d < 8; ++d) {
+          const double a = d * std::numbers::pi / 4.0;
+          const Vec3 want = best + h * (std::cos(a) * e1 + std::sin(a) * e2);
+          const Vec3 c = snap(v, want);
+          // A snap that lands far from the step went to another sheet of the surface (across a
+          // narrow gap): never follow it.
+          if (!is_finite(c) || distance(c, want) > 0.5 * h) continue;
+          const double q = quality(c);
+          if (q > cand_q + 1e-9) {
+            cand_q = q;
+            cand_best = c;
+          }
+        }
+        if (cand_q > best_q) {
+          best = cand_best;
+          best_q = cand_q;
+        } else {
+          h *= 0.5;
+        }
+      }
+      if (best_q > start_q + 1e-9) {
+        // The ring at its new place may not cut through another part of the surface; else try
+        // shorter moves towards it.
+        const Vec3 from = positions[v];
+        for (double f : {1.0, 0.5, 0.25}) {
+          const Vec3 c = f == 1.0 ? best : snap(v, from + f * (best - from));
+          if (!is_finite(c) || quality(c) <= start_q + 1e-9) continue;
+          positions[v] = c;
+          if (!ring_intersects(positions, triangles, fs, grid)) {
+            ++pass_moves;
+            break;
+          }
+          positions[v] = from;
+        }
+      }
+    }
+    moves += pass_moves;
+    if (pass_moves == 0) break;
+  }
+  return moves;
+}
+
+}  // namespace
+
+std::size_t repair_small_angles(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                                const std::vector<char>& fixed, const SurfaceSnap& snap,
+                                const AngleRepairOptions& options) {
+  const std::size_t nv = positions.size();
+  std::vector<std::vector<std::uint32_t>> ring(nv);  // triangles of each vertex
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    for (std::uint32_t v : triangles[f]) ring[v].push_back(static_cast<std::uint32_t>(f));
+  std::vector<char> frozen(fixed.begin(), fixed.end());
+  frozen.resize(nv, 0);
+  return optimise(positions, triangles, ring, frozen, snap, options);
+}
+
+}  // namespace c4d
