@@ -637,9 +637,19 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   if (manifold && opt.angle_repair.passes > 0) {
     const SurfaceProjector surface(mesh);
     std::vector<std::int32_t> hints(mesh.positions.size(), -1);
-    repair_small_angles(
-        mesh.positions, mesh.triangles, fixed,
-        [&](std::uint32_t v, Vec3 c) { return surface.closest(c, nullptr, &hints[v]); }, opt.angle_repair);
+    auto snap_to = [&](std::uint32_t v, Vec3 c) { return surface.closest(c, nullptr, &hints[v]); };
+    repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
+    // Slivers whose three vertices are all on contours (a small cap) cannot move: flip their edge
+    // where that raises the pair's smallest angle, and repair around the new edges.
+    std::vector<std::array<std::uint32_t, 2>> contour_edges;
+    for (const Node& n : nodes)
+      for (std::size_t k = 0; k < n.chain.size(); ++k)
+        contour_edges.push_back({n.chain[k], n.chain[(k + 1) % n.chain.size()]});
+    FlipOptions fo;
+    fo.max_dihedral_deg = 60;
+    fo.only_below_deg = opt.angle_repair.target_deg;
+    if (flip_edges_delaunay(mesh, contour_edges, fo) > 0)
+      repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
   }
 
   // Drop unused vertices (contours left without walls or caps when caps are open).

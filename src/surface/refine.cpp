@@ -14,6 +14,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "contour4d/surface/angle_repair.h"
+
 namespace c4d {
 namespace {
 
@@ -122,6 +124,11 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
       const std::uint32_t c = third(t1, a, b), d = third(t2, a, b);
       if (c == d || owner.count(key(c, d)) || owner.count(key(d, c))) continue;
       if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= std::numbers::pi + 1e-9) continue;
+      if (options.only_below_deg > 0) {
+        const double before = std::min(min_angle_deg(x[a], x[b], x[c]), min_angle_deg(x[b], x[a], x[d]));
+        const double after = std::min(min_angle_deg(x[c], x[a], x[d]), min_angle_deg(x[c], x[d], x[b]));
+        if (before >= options.only_below_deg || after <= before) continue;
+      }
       const Vec3 n1 = cross(x[b] - x[a], x[c] - x[a]), n2 = cross(x[a] - x[b], x[d] - x[b]);
       const double l1 = norm(n1), l2 = norm(n2);
       // Near-flat triangles (normal undefined: twice the area below 2 % of the squared edge, about a

@@ -17,7 +17,7 @@ namespace c4d {
 
 //! Options of repair_small_angles.
 struct AngleRepairOptions {
-  double target_deg = 30.0;  //!< vertices of triangles with an angle below this are optimised
+  double target_deg = 32.0;  //!< vertices of triangles with an angle below this are optimised
   int passes = 4;            //!< passes over the vertices found (the set is found again each pass)
   int steps = 12;            //!< pattern-search steps per vertex (each tries 8 directions, halving on failure)
   double first_step = 0.25;  //!< first step as a fraction of the vertex's mean edge length

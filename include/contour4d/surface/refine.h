@@ -31,6 +31,8 @@ void remesh_isotropic(TriangleMesh& mesh, std::vector<std::array<std::uint32_t, 
 struct FlipOptions {
   double max_dihedral_deg = 20.0;  //!< only flip where the two triangles are this close to coplanar (keeps the shape)
   int max_rounds = 20;             //!< passes over all edges at most
+  double only_below_deg = 0.0;     //!< > 0: only flip an edge of a triangle with an angle below this, and only where
+                                   //!< the flip raises the smallest angle of the pair (slivers left by the repair)
 };
 
 //! Flips every edge whose two opposite angles sum to more than 180° (the local Delaunay test, on the
