@@ -110,6 +110,7 @@ int run_reconstruct(const ReconstructArgs& a) {
                         {"matched_contours", mf.matched},
                         {"rbf_sources", mf.sources},
                         {"angle_repair_moves", mf.angle_repairs},
+                        {"intersecting_pairs_after_untangling", mf.intersecting_pairs},
                         {"projection_mean_mm", mf.projection_mean},
                         {"projection_max_mm", mf.projection_max},
                         {"surface", surface_json(rr.surfaces[f])}});

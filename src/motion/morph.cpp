@@ -512,10 +512,10 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       }
       // 4. The few triangles the relaxation leaves thin (saddles of splitting contours): their vertices
       //    move within the frame's surface to maximise their ring's smallest angle.
+      auto snap_to = [&](std::uint32_t v, Vec3 c) { return surface.closest(c, nullptr, &proj.hints[v]); };
+      if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, pinned, snap_to, opt.untangle_rounds);
       if (opt.angle_repair.passes > 0)
-        fr.angle_repairs = repair_small_angles(
-            x, frame0.triangles, pinned,
-            [&](std::uint32_t v, Vec3 c) { return surface.closest(c, nullptr, &proj.hints[v]); }, opt.angle_repair);
+        fr.angle_repairs = repair_small_angles(x, frame0.triangles, pinned, snap_to, opt.angle_repair);
     }
     for (const Vec3& p : x)
       if (!is_finite(p))

@@ -121,12 +121,22 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
                      const SurfaceSnap& snap, const AngleRepairOptions& options) {
   const double cos_fold = 0.5;  // a ring triangle may turn by at most 60°
   std::size_t moves = 0;
+  // Active set: after the first pass, a vertex is tried again only if it or a vertex of its ring
+  // moved in the previous pass (else its ring is unchanged and the search would fail again).
+  std::vector<char> moved(positions.size(), 1);
   for (int pass = 0; pass < options.passes; ++pass) {
+    std::vector<char> active(positions.size(), 0);
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      if (moved[v])
+        for (std::uint32_t f : ring[v])
+          for (std::uint32_t w : triangles[f]) active[w] = 1;
     std::vector<std::uint32_t> todo;
     for (const Triangle& t : triangles)
-      if (min_angle_deg(positions[t[0]], positions[t[1]], positions[t[2]]) < options.target_deg)
+      if ((active[t[0]] || active[t[1]] || active[t[2]]) &&
+          min_angle_deg(positions[t[0]], positions[t[1]], positions[t[2]]) < options.target_deg)
         for (std::uint32_t v : t)
-          if (!fixed[v]) todo.push_back(v);
+          if (!fixed[v] && active[v]) todo.push_back(v);
+    std::fill(moved.begin(), moved.end(), 0);
     std::sort(todo.begin(), todo.end());
     todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     if (todo.empty()) break;
@@ -208,6 +218,7 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
           positions[v] = c;
           if (!ring_intersects(positions, triangles, fs, grid)) {
             ++pass_moves;
+            moved[v] = 1;
             break;
           }
           positions[v] = from;
@@ -232,6 +243,65 @@ std::size_t repair_small_angles(std::vector<Vec3>& positions, const std::vector<
   std::vector<char> frozen(fixed.begin(), fixed.end());
   frozen.resize(nv, 0);
   return optimise(positions, triangles, ring, frozen, snap, options);
+}
+
+std::size_t untangle(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const std::vector<char>& fixed,
+                     const SurfaceSnap& snap, int rounds) {
+  const std::size_t nv = positions.size();
+  std::vector<std::vector<std::uint32_t>> nb(nv);
+  for (const Triangle& t : triangles)
+    for (int k = 0; k < 3; ++k) {
+      nb[t[k]].push_back(t[(k + 1) % 3]);
+      nb[t[k]].push_back(t[(k + 2) % 3]);
+    }
+  for (auto& n : nb) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  // The full intersection test costs more than the rest of a morphed frame: it runs only where a
+  // triangle is a sliver (below 15°), the mark of a crowded, folding patch.
+  bool suspect = false;
+  for (const Triangle& t : triangles)
+    if (min_angle_deg(positions[t[0]], positions[t[1]], positions[t[2]]) < 15.0) {
+      suspect = true;
+      break;
+    }
+  if (!suspect) return 0;
+  std::size_t left = 0;
+  for (int round = 0; round <= rounds; ++round) {
+    const TriangleMesh mesh{positions, triangles};
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    left = count_self_intersections(mesh, &pairs, triangles.size());
+    if (left == 0 || round == rounds) break;
+    // The vertices of the intersecting triangles and two rings around them.
+    std::vector<char> in(nv, 0);
+    for (const auto& [i, j] : pairs)
+      for (std::size_t f : {i, j})
+        for (std::uint32_t v : triangles[f]) in[v] = 1;
+    for (int grow = 0; grow < 2; ++grow) {
+      std::vector<char> next = in;
+      for (std::size_t v = 0; v < nv; ++v)
+        if (in[v])
+          for (std::uint32_t w : nb[v]) next[w] = 1;
+      in = std::move(next);
+    }
+    std::vector<std::uint32_t> region;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (in[v] && !(v < fixed.size() && fixed[v]) && !nb[v].empty()) region.push_back(static_cast<std::uint32_t>(v));
+    // Umbrella steps within the surface: folded, crowded patches open up.
+    for (int it = 0; it < 10; ++it) {
+      std::vector<Vec3> next(region.size());
+      for (std::size_t k = 0; k < region.size(); ++k) {
+        const std::uint32_t v = region[k];
+        Vec3 c{};
+        for (std::uint32_t w : nb[v]) c += positions[w];
+        next[k] = snap(v, c / static_cast<double>(nb[v].size()));
+      }
+      for (std::size_t k = 0; k < region.size(); ++k)
+        if (is_finite(next[k])) positions[region[k]] = next[k];
+    }
+  }
+  return left;
 }
 
 }  // namespace c4d

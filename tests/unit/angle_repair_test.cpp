@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "contour4d/core/mesh.h"
+#include "contour4d/metrics/topology.h"
 
 namespace {
 
@@ -111,4 +112,29 @@ TEST(AngleRepair, MovesStayOnACurvedSurfaceAndNeverFold) {
     EXPECT_GT(c4d::dot(nn, normals_before[f]), 0.0);
   }
   for (const Vec3& p : m.positions) EXPECT_NEAR(std::hypot(p.x, p.z), 3.0, 1e-9);
+}
+
+TEST(AngleRepair, UntangleOpensAFoldedPatch) {
+  // A grid on a plane; one interior vertex pushed past two of its neighbours folds its triangles
+  // over theirs.
+  const int n = 8;
+  c4d::TriangleMesh m = grid(n, 1.0);
+  for (Vec3& p : m.positions) p.z = 0.05 * p.x * p.y;  // slightly curved, so overlaps are crossings
+  const std::size_t v = static_cast<std::size_t>(4 * (n + 1) + 4);
+  m.positions[v] = {5.6, 5.5, 0.05 * 5.6 * 5.5};
+  ASSERT_GT(c4d::count_self_intersections(m), 0u);
+  auto saddle = [](std::uint32_t, Vec3 p) { return Vec3{p.x, p.y, 0.05 * p.x * p.y}; };
+  const auto fixed = boundary(n);
+  EXPECT_EQ(c4d::untangle(m.positions, m.triangles, fixed, saddle), 0u);
+  EXPECT_EQ(c4d::count_self_intersections(m), 0u);
+  for (std::size_t w = 0; w < m.positions.size(); ++w) {
+    EXPECT_NEAR(m.positions[w].z, 0.05 * m.positions[w].x * m.positions[w].y, 1e-12);
+  }
+}
+
+TEST(AngleRepair, UntangleLeavesAGoodMeshAlone) {
+  c4d::TriangleMesh m = grid(6, 1.0);
+  const auto before = m.positions;
+  EXPECT_EQ(c4d::untangle(m.positions, m.triangles, boundary(6), [](std::uint32_t, Vec3 p) { return p; }), 0u);
+  for (std::size_t v = 0; v < m.positions.size(); ++v) EXPECT_TRUE(m.positions[v] == before[v]);
 }

@@ -40,6 +40,8 @@ struct MorphOptions {
   bool vertical_deformation = false;  //!< Lim et al.'s sine vertical pre-deformation (eq. 10, Table 1) at slices whose
                                       //!< contours split or merge, before the matching (vertical_deformation.h)
   VerticalDeformationOptions vertical;  //!< its options
+  int untangle_rounds = 4;         //!< RbfProject: where triangles intersect after the relaxation, rounds of umbrella
+                                   //!< steps within the surface around them (0: off; see angle_repair.h untangle)
   AngleRepairOptions angle_repair;  //!< after the relaxation (RbfProject): vertices of triangles with an angle below
                                     //!< angle_repair.target_deg move within the surface to maximise their ring's
                                     //!< smallest angle (passes = 0: off)
@@ -73,6 +75,7 @@ struct SubMeshLifetime {
 struct MorphFrameReport {
   int matched = 0;             //!< section↔contour matches used as RBF constraints
   int sources = 0;             //!< RBF source points
+  std::size_t intersecting_pairs = 0;  //!< triangle pairs still intersecting after untangling (RbfProject)
   std::size_t angle_repairs = 0;  //!< vertex moves of the small-angle repair
   double projection_max = 0;   //!< max distance (mm) from the frame's surface before the final projection
   double projection_mean = 0;  //!< mean of the same
