@@ -37,11 +37,13 @@ fi
 echo
 echo "== 3. an analytic phantom with known truth: the idealized left heart of Lim et al. =="
 "$c4d" phantom left-heart -o "$out/left-heart"
-"$c4d" evaluate "$out/left-heart/truth" --contours "$out/left-heart/contours.json"
+"$c4d" reconstruct "$out/left-heart/contours.json" -o "$out/left-heart/mesh"
+echo "-- the 4D mesh against the phantom's true surface (distances in mm over every frame):"
+"$c4d" evaluate "$out/left-heart/mesh" --contours "$out/left-heart/contours.json" --truth "$out/left-heart/truth"
 
 echo
 echo "Results are in $out:"
 echo "  $out/bivme-lv-endo.json         contours read from the GPFiles (mm, LPS patient space)"
 [ -f "$out/bivme-lv/mesh.pvd" ] && echo "  $out/bivme-lv/mesh.pvd          the 4D mesh: one .vtp per frame (+ .obj), report.json"
-echo "  $out/left-heart/                contours.json and the true surface (truth/mesh.pvd)"
+echo "  $out/left-heart/                contours.json, the true surface (truth/mesh.pvd) and our 4D mesh (mesh/mesh.pvd)"
 echo "Look at them: open a mesh.pvd in ParaView (File > Open, then press Play), or any frames/*.obj in MeshLab/Blender."

@@ -1,6 +1,6 @@
 #pragma once
-// Private to src/metrics: exact point-to-surface distance behind a small interface, so that CGAL's
-// AABB tree types stay inside triangle_distance.cpp (they compile slowly).
+// Private to src/metrics: exact point-to-surface distance (a SurfaceProjector underneath) behind
+// the small interface the metrics use.
 
 #include <memory>
 #include <vector>

@@ -7,6 +7,7 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <limits>
 #include <vector>
 
 namespace c4d {
@@ -24,17 +25,26 @@ struct SurfaceProjector::Impl {
 };
 
 SurfaceProjector::SurfaceProjector(const TriangleMesh& s) : impl_(std::make_unique<Impl>()) {
+  const std::size_t n = s.positions.size();
   impl_->triangles.reserve(s.triangles.size());
   for (const Triangle& t : s.triangles) {
+    if (t[0] >= n || t[1] >= n || t[2] >= n) continue;
     const Vec3 a = s.positions[t[0]], b = s.positions[t[1]], c = s.positions[t[2]];
+    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
+    // A zero-area triangle adds nothing to the surface and CGAL's closest-point construction is not
+    // defined for it.
+    if (!(norm(cross(b - a, c - a)) > 0.0)) continue;
     impl_->triangles.emplace_back(K::Point_3(a.x, a.y, a.z), K::Point_3(b.x, b.y, b.z), K::Point_3(c.x, c.y, c.z));
     impl_->normals.push_back(normalized(cross(b - a, c - a)));
   }
+  if (impl_->triangles.empty()) return;
   impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
   impl_->tree.accelerate_distance_queries();
 }
 
 SurfaceProjector::~SurfaceProjector() = default;
+
+bool SurfaceProjector::empty() const { return impl_->triangles.empty(); }
 
 Vec3 SurfaceProjector::closest(Vec3 p, Vec3* normal) const {
   std::int32_t none = -1;
@@ -42,6 +52,11 @@ Vec3 SurfaceProjector::closest(Vec3 p, Vec3* normal) const {
 }
 
 Vec3 SurfaceProjector::closest(Vec3 p, Vec3* normal, std::int32_t* hint) const {
+  if (empty()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (normal) *normal = {nan, nan, nan};
+    return {nan, nan, nan};
+  }
   const K::Point_3 q(p.x, p.y, p.z);
   Tree::Point_and_primitive_id hit;
   const auto h = *hint;

@@ -16,6 +16,9 @@ class SurfaceProjector {
   ~SurfaceProjector();
   SurfaceProjector(const SurfaceProjector&) = delete;
   SurfaceProjector& operator=(const SurfaceProjector&) = delete;
+  //! True when the mesh has no triangle of non-zero area (invalid, non-finite and zero-area
+  //! triangles are left out); closest() then returns NaN.
+  bool empty() const;
   //! Closest point of the surface to p; `normal` (if given) gets the unit normal of its triangle.
   Vec3 closest(Vec3 p, Vec3* normal = nullptr) const;
   //! The same, starting the search from triangle `*hint` (a previous answer for a nearby query;
