@@ -1,5 +1,7 @@
 #include "contour4d/core/mesh.h"
 
+#include <algorithm>
+
 namespace c4d {
 
 double signed_volume(const TriangleMesh& mesh) {
@@ -23,6 +25,21 @@ double surface_area(const TriangleMesh& mesh) {
     a += 0.5 * norm(cross(q - p, r - p));
   }
   return a;
+}
+
+std::vector<std::vector<std::uint32_t>> vertex_neighbours(std::size_t vertex_count,
+                                                          const std::vector<Triangle>& triangles) {
+  std::vector<std::vector<std::uint32_t>> ring(vertex_count);
+  for (const Triangle& t : triangles)
+    for (int k = 0; k < 3; ++k) {
+      ring[t[k]].push_back(t[(k + 1) % 3]);
+      ring[t[k]].push_back(t[(k + 2) % 3]);
+    }
+  for (auto& r : ring) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+  return ring;
 }
 
 }  // namespace c4d

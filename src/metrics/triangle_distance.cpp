@@ -7,24 +7,13 @@
 #include <cstdint>
 #include <limits>
 
-#include "contour4d/surface/surface_projector.h"
-
 namespace c4d::metrics_internal {
 
-struct TriangleDistance::Impl {
-  explicit Impl(const TriangleMesh& mesh) : surface(mesh) {}
-  SurfaceProjector surface;
-};
-
-TriangleDistance::TriangleDistance(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
-
-TriangleDistance::~TriangleDistance() = default;
-
-bool TriangleDistance::valid() const { return !impl_->surface.empty(); }
+bool TriangleDistance::valid() const { return !surface_.empty(); }
 
 double TriangleDistance::distance(Vec3 p) const {
   if (!valid()) return std::numeric_limits<double>::infinity();
-  return c4d::distance(p, impl_->surface.closest(p));
+  return c4d::distance(p, surface_.closest(p));
 }
 
 std::vector<double> TriangleDistance::distances(const std::vector<Vec3>& points) const {
@@ -37,7 +26,7 @@ std::vector<double> TriangleDistance::distances(const std::vector<Vec3>& points)
   // Consecutive samples are neighbours on their surface or contour, so the previous closest
   // triangle bounds the next search (about 3x faster); the answer is still exact.
   std::int32_t hint = -1;
-  for (const Vec3& p : points) out.push_back(c4d::distance(p, impl_->surface.closest(p, nullptr, &hint)));
+  for (const Vec3& p : points) out.push_back(c4d::distance(p, surface_.closest(p, nullptr, &hint)));
   return out;
 }
 

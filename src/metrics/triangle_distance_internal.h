@@ -2,10 +2,10 @@
 // Private to src/metrics: exact point-to-surface distance (a SurfaceProjector underneath) behind
 // the small interface the metrics use.
 
-#include <memory>
 #include <vector>
 
 #include "contour4d/core/mesh.h"
+#include "contour4d/surface/surface_projector.h"
 
 namespace c4d::metrics_internal {
 
@@ -13,10 +13,7 @@ namespace c4d::metrics_internal {
 //! Zero-area triangles are left out of the tree (their points lie on their neighbours' edges).
 class TriangleDistance {
  public:
-  explicit TriangleDistance(const TriangleMesh& mesh);
-  ~TriangleDistance();
-  TriangleDistance(const TriangleDistance&) = delete;
-  TriangleDistance& operator=(const TriangleDistance&) = delete;
+  explicit TriangleDistance(const TriangleMesh& mesh) : surface_(mesh) {}
 
   //! False when the mesh has no triangle of non-zero area (every distance is then +inf).
   bool valid() const;
@@ -26,8 +23,7 @@ class TriangleDistance {
   std::vector<double> distances(const std::vector<Vec3>& points) const;
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  SurfaceProjector surface_;
 };
 
 }  // namespace c4d::metrics_internal

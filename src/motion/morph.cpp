@@ -36,18 +36,6 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-std::vector<std::vector<std::uint32_t>> neighbours(std::size_t n, const std::vector<Triangle>& tris) {
-  std::vector<std::set<std::uint32_t>> s(n);
-  for (const Triangle& t : tris)
-    for (int k = 0; k < 3; ++k) {
-      s[t[static_cast<std::size_t>(k)]].insert(t[static_cast<std::size_t>((k + 1) % 3)]);
-      s[t[static_cast<std::size_t>((k + 1) % 3)]].insert(t[static_cast<std::size_t>(k)]);
-    }
-  std::vector<std::vector<std::uint32_t>> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i].assign(s[i].begin(), s[i].end());
-  return out;
-}
-
 // Uniform ("umbrella") Laplacian: (L x)_i = x_i − mean of the neighbours of i.
 SparseMatrix uniform_laplacian(const std::vector<std::vector<std::uint32_t>>& nb) {
   std::vector<Eigen::Triplet<double>> t;
@@ -336,7 +324,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     throw SolverError(ErrorCode::Internal, {}, "morph_sequence: RbfProject needs one surface per frame");
 
   const std::size_t nv = frame0.positions.size();
-  const auto nb = neighbours(nv, frame0.triangles);
+  const auto nb = vertex_neighbours(nv, frame0.triangles);
   const std::vector<Chain> chains = find_chains(seq, frame0);
   // Per vertex, the edges opposite it in its triangles, in the triangles' (outward) order.
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> opposite(nv);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <unordered_map>
 
 #include "contour4d/metrics/topology.h"
@@ -140,7 +141,8 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
     std::sort(todo.begin(), todo.end());
     todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     if (todo.empty()) break;
-    const TriangleGrid grid = bin_triangles(positions, triangles);
+    // Binned once per pass, and only when a move is to be checked.
+    std::optional<TriangleGrid> grid;
     std::size_t pass_moves = 0;
     for (std::uint32_t v : todo) {
       const auto& fs = ring[v];
@@ -216,7 +218,8 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
           const Vec3 c = f == 1.0 ? best : snap(v, from + f * (best - from));
           if (!is_finite(c) || quality(c) <= start_q + 1e-9) continue;
           positions[v] = c;
-          if (!ring_intersects(positions, triangles, fs, grid)) {
+          if (!grid) grid = bin_triangles(positions, triangles);
+          if (!ring_intersects(positions, triangles, fs, *grid)) {
             ++pass_moves;
             moved[v] = 1;
             break;
@@ -247,17 +250,6 @@ std::size_t repair_small_angles(std::vector<Vec3>& positions, const std::vector<
 
 std::size_t untangle(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const std::vector<char>& fixed,
                      const SurfaceSnap& snap, int rounds) {
-  const std::size_t nv = positions.size();
-  std::vector<std::vector<std::uint32_t>> nb(nv);
-  for (const Triangle& t : triangles)
-    for (int k = 0; k < 3; ++k) {
-      nb[t[k]].push_back(t[(k + 1) % 3]);
-      nb[t[k]].push_back(t[(k + 2) % 3]);
-    }
-  for (auto& n : nb) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
   // The full intersection test costs more than the rest of a morphed frame: it runs only where a
   // triangle is a sliver (below 15°), the mark of a crowded, folding patch.
   bool suspect = false;
@@ -267,6 +259,8 @@ std::size_t untangle(std::vector<Vec3>& positions, const std::vector<Triangle>& 
       break;
     }
   if (!suspect) return 0;
+  const std::size_t nv = positions.size();
+  const auto nb = vertex_neighbours(nv, triangles);
   std::size_t left = 0;
   for (int round = 0; round <= rounds; ++round) {
     const TriangleMesh mesh{positions, triangles};
@@ -278,7 +272,7 @@ std::size_t untangle(std::vector<Vec3>& positions, const std::vector<Triangle>& 
     for (const auto& [i, j] : pairs)
       for (std::size_t f : {i, j})
         for (std::uint32_t v : triangles[f]) in[v] = 1;
-    for (int grow = 0; grow < 2; ++grow) {
+    for (int layer = 0; layer < 2; ++layer) {
       std::vector<char> next = in;
       for (std::size_t v = 0; v < nv; ++v)
         if (in[v])

@@ -365,22 +365,22 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
       bool tiled = false;
       auto& dest = opt.remesh ? to_remesh : b.triangles;
       if (opt.tiling == Tiling::Delaunay && !(opt.rows && lower.size() == 1 && upper.size() == 1)) {
-        std::vector<std::vector<Vec2>> lp, up;
+        // Both slices' contours projected on the lower plane; ids lists their vertices in the
+        // tiling's order (lower polygons, then upper, then the new points).
         std::vector<std::uint32_t> ids;
-        for (int n : lower) {
-          lp.emplace_back();
-          for (std::uint32_t v : nodes[n].chain) {
-            lp.back().push_back(to_plane(slices[s].plane, b.positions[v]));
-            ids.push_back(v);
+        auto project = [&](const std::vector<int>& side) {
+          std::vector<std::vector<Vec2>> polys;
+          for (int n : side) {
+            polys.emplace_back();
+            for (std::uint32_t v : nodes[n].chain) {
+              polys.back().push_back(to_plane(slices[s].plane, b.positions[v]));
+              ids.push_back(v);
+            }
           }
-        }
-        for (int n : upper) {
-          up.emplace_back();
-          for (std::uint32_t v : nodes[n].chain) {
-            up.back().push_back(to_plane(slices[s].plane, b.positions[v]));
-            ids.push_back(v);
-          }
-        }
+          return polys;
+        };
+        const auto lp = project(lower);
+        const auto up = project(upper);
         std::string problem;
         try {
           const DelaunayTiling dt = tile_slices_delaunay(lp, up, gap);
@@ -608,13 +608,14 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   // Fairing moved the free vertices, stretching triangles where it moved them most (bridges at
   // branchings, domes): one isotropic remeshing of the whole faired surface, projected onto it, with
   // every contour kept as a fixed chain of edges, evens them out across band and cap borders.
+  // Every contour edge: kept by the final remeshing and never flipped.
+  std::vector<std::array<std::uint32_t, 2>> constrained;
+  for (const Node& n : nodes)
+    for (std::size_t k = 0; k < n.chain.size(); ++k) {
+      const std::uint32_t a = n.chain[k], c = n.chain[(k + 1) % n.chain.size()];
+      constrained.push_back({std::min(a, c), std::max(a, c)});
+    }
   if (manifold && opt.remesh && !opt.rows && opt.final_remesh_iterations > 0) {
-    std::vector<std::array<std::uint32_t, 2>> constrained;
-    for (const Node& n : nodes)
-      for (std::size_t k = 0; k < n.chain.size(); ++k) {
-        const std::uint32_t a = n.chain[k], c = n.chain[(k + 1) % n.chain.size()];
-        constrained.push_back({std::min(a, c), std::max(a, c)});
-      }
     // Where the contours had to be sampled finer than `edge` (tight bends keep within the contour
     // tolerance), triangles of `edge` against them would be poorly shaped: the target follows the
     // typical contour edge, down to half of `edge`.
@@ -641,14 +642,10 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
     // Slivers whose three vertices are all on contours (a small cap) cannot move: flip their edge
     // where that raises the pair's smallest angle, and repair around the new edges.
-    std::vector<std::array<std::uint32_t, 2>> contour_edges;
-    for (const Node& n : nodes)
-      for (std::size_t k = 0; k < n.chain.size(); ++k)
-        contour_edges.push_back({n.chain[k], n.chain[(k + 1) % n.chain.size()]});
     FlipOptions fo;
     fo.max_dihedral_deg = 60;
     fo.only_below_deg = opt.angle_repair.target_deg;
-    if (flip_edges_delaunay(mesh, contour_edges, fo) > 0)
+    if (flip_edges_delaunay(mesh, constrained, fo) > 0)
       repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
   }
 

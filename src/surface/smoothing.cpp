@@ -26,16 +26,7 @@ void smooth_lambda_mu_epsilon(TriangleMesh& mesh, const std::vector<char>& fixed
   const std::size_t nv = mesh.positions.size();
   if (nv == 0 || options.iterations <= 0) return;
   // One-ring neighbours (unique, sorted: the sums do not depend on triangle order beyond rounding).
-  std::vector<std::vector<std::uint32_t>> ring(nv);
-  for (const Triangle& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      ring[t[k]].push_back(t[(k + 1) % 3]);
-      ring[t[k]].push_back(t[(k + 2) % 3]);
-    }
-  for (auto& r : ring) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-  }
+  const auto ring = vertex_neighbours(nv, mesh.triangles);
   const double lambda = options.lambda;
   const double mu = 1.0 / (options.pass_band - 1.0 / lambda);
   std::vector<Vec3> next(nv);

@@ -205,6 +205,16 @@ void expect_volume_between_overlap_and_union(const Polygons& lower, const Polygo
   EXPECT_LT(v, 1.01 * gap * any);
 }
 
+// Contours that cross or touch in projection: a valid band whose volume lies between the prisms
+// of the overlap and of the union, closed by fan caps into a sphere-like mesh.
+DelaunayTiling expect_valid_crossing(const Polygons& lower, const Polygons& upper, double gap) {
+  const DelaunayTiling t = c4d::tile_slices_delaunay(lower, upper, gap);
+  expect_valid_band(lower, upper, gap, t);
+  expect_volume_between_overlap_and_union(lower, upper, gap, t);
+  expect_closed(closed_mesh(lower, upper, gap, t, fan_caps(lower, upper)), 2);
+  return t;
+}
+
 TEST(DelaunayTiling, ConcentricCirclesGiveTheFrustum) {
   const Polygons lower{circle(0, 0, 10, 64)}, upper{circle(0, 0, 8, 64)};
   const double gap = 5.0;
@@ -256,11 +266,8 @@ TEST(DelaunayTiling, OffsetCirclesCrossInProjection) {
 TEST(DelaunayTiling, RotatedEllipseCrossesCircleFourTimes) {
   const Polygons lower{ellipse(0.5, -0.3, 13, 7, 0.4, 80)}, upper{circle(0, 0, 9.5, 60)};
   const double gap = 6.0;
-  const DelaunayTiling t = c4d::tile_slices_delaunay(lower, upper, gap);
-  expect_valid_band(lower, upper, gap, t);
+  const DelaunayTiling t = expect_valid_crossing(lower, upper, gap);
   EXPECT_EQ(t.crossing_points, 4u);
-  expect_volume_between_overlap_and_union(lower, upper, gap, t);
-  expect_closed(closed_mesh(lower, upper, gap, t, fan_caps(lower, upper)), 2);
 }
 
 TEST(DelaunayTiling, OneEllipseAboveTwoCircles) {
@@ -290,11 +297,8 @@ TEST(DelaunayTiling, TwoCirclesCrossingOneEllipse) {
   // n→1 where each lower circle sticks out of the upper ellipse.
   const Polygons lower{circle(-9, 0, 4, 32), circle(9, 0.5, 4, 32)}, upper{ellipse(0, 0, 11, 5, 0.1, 72)};
   const double gap = 5.0;
-  const DelaunayTiling t = c4d::tile_slices_delaunay(lower, upper, gap);
-  expect_valid_band(lower, upper, gap, t);
+  const DelaunayTiling t = expect_valid_crossing(lower, upper, gap);
   EXPECT_EQ(t.crossing_points, 4u);
-  expect_volume_between_overlap_and_union(lower, upper, gap, t);
-  expect_closed(closed_mesh(lower, upper, gap, t, fan_caps(lower, upper)), 2);
 }
 
 TEST(DelaunayTiling, RingWithHoleOnBothSlices) {
@@ -341,10 +345,7 @@ TEST(DelaunayTiling, VertexOnEdgeAndOverlappingEdges) {
   const Polygons lower{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}};
   const Polygons upper{{{5, 0}, {15, 0}, {15, 10}, {5, 10}}};
   const double gap = 4.0;
-  const DelaunayTiling t = c4d::tile_slices_delaunay(lower, upper, gap);
-  expect_valid_band(lower, upper, gap, t);
-  expect_volume_between_overlap_and_union(lower, upper, gap, t);
-  expect_closed(closed_mesh(lower, upper, gap, t, fan_caps(lower, upper)), 2);
+  expect_valid_crossing(lower, upper, gap);
 }
 
 TEST(DelaunayTiling, SharedVertexOnly) {
@@ -352,10 +353,7 @@ TEST(DelaunayTiling, SharedVertexOnly) {
   const Polygons lower{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}};
   const Polygons upper{{{10, 5}, {14, 9}, {10, 13}, {6, 9}}};
   const double gap = 2.0;
-  const DelaunayTiling t = c4d::tile_slices_delaunay(lower, upper, gap);
-  expect_valid_band(lower, upper, gap, t);
-  expect_volume_between_overlap_and_union(lower, upper, gap, t);
-  expect_closed(closed_mesh(lower, upper, gap, t, fan_caps(lower, upper)), 2);
+  expect_valid_crossing(lower, upper, gap);
 }
 
 TEST(DelaunayTiling, CoincidentVertex) {
@@ -364,11 +362,8 @@ TEST(DelaunayTiling, CoincidentVertex) {
   const Polygons lower{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}};
   const Polygons upper{{{10, 10}, {3, 14}, {-3, 5}, {4, 3}}};
   const double gap = 3.0;
-  const DelaunayTiling t = c4d::tile_slices_delaunay(lower, upper, gap);
-  expect_valid_band(lower, upper, gap, t);
+  const DelaunayTiling t = expect_valid_crossing(lower, upper, gap);
   EXPECT_EQ(t.crossing_points, 4u);  // the shared corner and three crossings
-  expect_volume_between_overlap_and_union(lower, upper, gap, t);
-  expect_closed(closed_mesh(lower, upper, gap, t, fan_caps(lower, upper)), 2);
 }
 
 TEST(DelaunayTiling, HoleAppearsOnUpperSlice) {

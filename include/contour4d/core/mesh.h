@@ -35,4 +35,9 @@ double signed_volume(const TriangleMesh& mesh);
 //! Total surface area (mm²).
 double surface_area(const TriangleMesh& mesh);
 
+//! The one-ring of every vertex: the vertices sharing an edge with it, sorted, without repeats.
+//! Vertices of no triangle get an empty ring.
+std::vector<std::vector<std::uint32_t>> vertex_neighbours(std::size_t vertex_count,
+                                                          const std::vector<Triangle>& triangles);
+
 }  // namespace c4d
