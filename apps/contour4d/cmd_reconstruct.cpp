@@ -47,7 +47,7 @@ nlohmann::json connections_json(const std::vector<Connection>& cs) {
 nlohmann::json surface_json(const SurfaceReport& r) {
   return {{"contours", r.contours},   {"caps", r.caps},         {"branchings", r.branchings},
           {"vertices", r.vertices},   {"triangles", r.triangles}, {"closed", r.closed},
-          {"self_intersects", r.self_intersects}, {"euler", r.euler}, {"components", r.components},
+          {"self_intersects", r.self_intersections_checked ? nlohmann::json(r.self_intersects) : nlohmann::json()}, {"euler", r.euler}, {"components", r.components},
           {"volume_mm3", r.volume},   {"warnings", r.warnings},  {"connections", connections_json(r.connections)}};
 }
 
@@ -110,6 +110,8 @@ int run_reconstruct(const ReconstructArgs& a) {
                         {"matched_contours", mf.matched},
                         {"rbf_sources", mf.sources},
                         {"angle_repair_moves", mf.angle_repairs},
+                        {"sliding_contour_vertices", mf.sliding},
+                        {"sliding_undone", mf.sliding_undone},
                         {"intersecting_pairs_after_untangling", mf.intersecting_pairs},
                         {"projection_mean_mm", mf.projection_mean},
                         {"projection_max_mm", mf.projection_max},

@@ -14,6 +14,7 @@
 #include "contour4d/motion/morph.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <map>
 #include <set>
@@ -147,13 +148,58 @@ struct ChainTarget {
   std::uint32_t vertex;
   Vec3 position;
   bool pinned;  // held there by the projection and relaxation, not only guided by the RBF
+  int line;     // >= 0: slides along this matched contour (index into the frame's contour lines)
+  int slice;    // slice id of the chain
 };
+
+// Chain vertices at least `spacing` apart along a contour of `length` carrying `count` of them: every
+// stride-th one (0: none).
+std::size_t spacing_stride(double spacing, double length, std::size_t count) {
+  const double per = length / static_cast<double>(std::max<std::size_t>(1, count));
+  const double ratio = per > 0 ? spacing / per : 1.0;
+  return (spacing <= 0 || ratio > 1e6) ? 0 : std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ratio - 1e-9)));
+}
+
+bool on_stride(std::size_t k, std::size_t stride, std::size_t count) {
+  return stride > 0 && k % stride == 0 && (stride == 1 || k + stride / 2 < count);
+}
+
+// Closest point to q on the closed polyline `loop`. `hint` is the segment found last time (-1: none,
+// then every segment is tried); the search walks from it while a neighbouring segment is closer, so a
+// point that moves a little along the contour costs a few segment tests.
+Vec3 closest_on_loop(const std::vector<Vec3>& loop, Vec3 q, std::int32_t& hint) {
+  const std::size_t n = loop.size();
+  double best = std::numeric_limits<double>::infinity();
+  Vec3 bp = q;
+  std::size_t bk = 0;
+  auto consider = [&](std::size_t k) {  // true when segment k is closer than the best so far
+    const Vec3 a = loop[k], e = loop[(k + 1) % n] - a;
+    const double ee = dot(e, e);
+    const Vec3 p = a + (ee > 0 ? std::clamp(dot(q - a, e) / ee, 0.0, 1.0) : 0.0) * e;
+    const double d2 = dot(q - p, q - p);
+    if (!(d2 < best)) return false;
+    best = d2;
+    bp = p;
+    bk = k;
+    return true;
+  };
+  if (hint < 0 || static_cast<std::size_t>(hint) >= n) {
+    for (std::size_t k = 0; k < n; ++k) consider(k);
+  } else {
+    consider(static_cast<std::size_t>(hint));
+    for (std::size_t steps = 0; steps < n; ++steps)
+      if (!consider((bk + 1) % n) && !consider((bk + n - 1) % n)) break;
+  }
+  hint = static_cast<std::int32_t>(bk);
+  return bp;
+}
 
 // Matches the chains (at their current positions) to the contours of `frame`, one-to-one per slice;
 // fills `target` for every vertex of a matched chain. Reports slices whose contour count changed.
 void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const std::vector<Vec3>& x, int frame,
-                  const MorphOptions& opt, double pin_spacing, std::vector<ChainTarget>& targets,
-                  MorphFrameReport& fr, std::vector<SliceEvent>& events, std::map<int, int>& previous_counts) {
+                  const MorphOptions& opt, double pin_spacing, double slide_spacing, std::vector<ChainTarget>& targets,
+                  std::vector<std::vector<Vec3>>& lines, std::set<int>& held, MorphFrameReport& fr,
+                  std::vector<SliceEvent>& events, std::map<int, int>& previous_counts) {
   std::map<int, std::vector<std::size_t>> by_slice;
   for (std::size_t c = 0; c < chains.size(); ++c) by_slice[chains[c].slice].push_back(c);
   const Frame& target = seq.frames[static_cast<std::size_t>(frame)];
@@ -163,11 +209,25 @@ void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const s
     if (previous_counts[id] != n) events.push_back({frame, id, event_kind(previous_counts[id], n), previous_counts[id], n});
   for (const auto& [id, n] : previous_counts)
     if (n > 0 && !counts.count(id)) events.push_back({frame, id, "vanish", n, 0});
+  // Slices whose contour count changes into or out of this frame.
+  std::set<int> changing;
+  for (const auto& [id, n] : counts)
+    if (previous_counts[id] != n) changing.insert(id);
+  if (static_cast<std::size_t>(frame) + 1 < seq.frames.size()) {
+    std::map<int, int> next;
+    for (const Slice& s : seq.frames[static_cast<std::size_t>(frame) + 1].slices) next[s.id] = static_cast<int>(s.contours.size());
+    for (const auto& [id, n] : counts)
+      if (next[id] != n) changing.insert(id);
+  }
   previous_counts = counts;
 
+  std::set<int> unmatched = changing;  // slices with a chain left without partner, or changing (topology changes)
   for (const auto& [id, idx] : by_slice) {
     const Slice* ts = find_slice(target, id);
-    if (!ts) continue;
+    if (!ts) {
+      unmatched.insert(id);
+      continue;
+    }
     const Plane& pl = chains[idx.front()].plane;
     std::vector<std::vector<Vec2>> a, b;
     for (std::size_t c : idx) {
@@ -187,28 +247,111 @@ void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const s
           partner = static_cast<int>(j);
           ++count;
         }
-      if (count != 1) continue;
+      if (count != 1) {
+        unmatched.insert(id);
+        continue;
+      }
       int back = 0;
       for (std::size_t k = 0; k < a.size(); ++k) back += sim[k][static_cast<std::size_t>(partner)] > opt.threshold;
-      if (back != 1) continue;
+      if (back != 1) {
+        unmatched.insert(id);
+        continue;
+      }
       const ContourMatch m = match_contour(a[i], b[static_cast<std::size_t>(partner)]);
       const Chain& ch = chains[idx[i]];
       // Every chain vertex gets a target (they all guide the RBF). A contour that shrank would crowd
       // its chain if all were held there: only every stride-th vertex is pinned, so pinned points
       // stay about pin_spacing apart and the others relax on the surface.
+      // Likewise, only chain vertices slide_spacing apart slide along the contour.
       double len = 0;
       for (std::size_t k = 0; k < m.targets.size(); ++k) len += norm(m.targets[(k + 1) % m.targets.size()] - m.targets[k]);
-      const double spacing = len / static_cast<double>(std::max<std::size_t>(1, ch.loop.size()));
-      const double ratio = spacing > 0 ? pin_spacing / spacing : 1.0;
-      const std::size_t stride = (pin_spacing <= 0 || ratio > 1e6)
-                                     ? 0
-                                     : std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ratio - 1e-9)));
-      for (std::size_t k = 0; k < ch.loop.size(); ++k) {
-        const bool pin = stride > 0 && k % stride == 0 && (stride == 1 || k + stride / 2 < ch.loop.size());
-        targets.push_back({ch.loop[k], from_plane(pl, m.targets[k]), pin});
-      }
+      const std::size_t stride = spacing_stride(pin_spacing, len, ch.loop.size());
+      const std::size_t slide = spacing_stride(slide_spacing, len, ch.loop.size());
+      const int line = static_cast<int>(lines.size());
+      lines.push_back(ts->contours[static_cast<std::size_t>(partner)].points);
+      for (std::size_t k = 0; k < ch.loop.size(); ++k)
+        targets.push_back({ch.loop[k], from_plane(pl, m.targets[k]), on_stride(k, stride, ch.loop.size()),
+                           on_stride(k, slide, ch.loop.size()) ? line : -1, id});
       ++fr.matched;
     }
+  }
+  // Next to a slice whose contours split, merge, appear or vanish, the surface must move through the
+  // slices to follow: chains there do not slide (held in their planes, they crowd the triangles).
+  if (unmatched.empty()) return;
+  std::vector<std::pair<double, int>> order;
+  for (const auto& [id, idx] : by_slice) order.push_back({dot(chains[idx.front()].plane.origin, seq.normal), id});
+  std::sort(order.begin(), order.end());
+  held.insert(unmatched.begin(), unmatched.end());
+  for (std::size_t k = 0; k < order.size(); ++k)
+    if (unmatched.count(order[k].second)) {
+      if (k > 0) held.insert(order[k - 1].second);
+      if (k + 1 < order.size()) held.insert(order[k + 1].second);
+    }
+}
+
+// Area of the triangles of (pos, tris) per band between consecutive slice heights (band 0 below the
+// first height, band n above the last), each triangle counted in the band of its centroid.
+std::vector<double> band_areas(const std::vector<Vec3>& pos, const std::vector<Triangle>& tris, Vec3 normal,
+                               const std::vector<double>& heights) {
+  std::vector<double> a(heights.size() + 1, 0.0);
+  for (const Triangle& t : tris) {
+    const Vec3 p = pos[t[0]], q = pos[t[1]], r = pos[t[2]];
+    const double h = dot(p + q + r, normal) / 3.0;
+    const auto b = static_cast<std::size_t>(std::upper_bound(heights.begin(), heights.end(), h) - heights.begin());
+    a[b] += 0.5 * norm(cross(q - p, r - p));
+  }
+  return a;
+}
+
+// Summed contour perimeter per slice id of one frame.
+std::map<int, double> slice_perimeters(const Frame& f) {
+  std::map<int, double> out;
+  for (const Slice& s : f.slices)
+    for (const Contour& c : s.contours)
+      for (std::size_t k = 0; k < c.points.size(); ++k)
+        out[s.id] += distance(c.points[k], c.points[(k + 1) % c.points.size()]);
+  return out;
+}
+
+// Frame 0's bands between the slices that carry contour chains.
+struct Bands {
+  std::vector<double> heights;  // slice heights along the stack normal, ascending
+  std::vector<int> slice_ids;   // the slices at those heights
+  std::vector<double> areas;    // band_areas of frame 0's mesh
+  std::map<int, double> perimeters;  // slice_perimeters of frame 0
+};
+
+// A chain sliding in its plane fixes how many vertices the bands beside it hold. Where a band changed
+// shape unevenly since frame 0 (its height, from its area on the frame's own surface over its width,
+// scaled more than `limit` × its width, the contours' perimeter ratio, or the reverse), those vertices
+// must move through the plane to keep their triangles: the chains bounding it are held.
+void hold_uneven_bands(const Bands& b0, const TriangleMesh& surface, const Frame& frame, Vec3 normal, double limit,
+                       std::set<int>& held) {
+  const std::vector<double> at = band_areas(surface.positions, surface.triangles, normal, b0.heights);
+  const std::map<int, double> pt = slice_perimeters(frame);
+  const std::size_t n = b0.heights.size();
+  auto ratio = [&](std::size_t k) {
+    const auto p = b0.perimeters.find(b0.slice_ids[k]), q = pt.find(b0.slice_ids[k]);
+    return p == b0.perimeters.end() || q == pt.end() || p->second <= 0 ? -1.0 : q->second / p->second;
+  };
+  for (std::size_t b = 0; b <= n; ++b) {
+    double sum = 0;
+    int count = 0;
+    bool uneven = false;
+    for (std::size_t k : {b - 1, b}) {
+      if (k >= n) continue;  // b - 1 wraps for b = 0
+      const double r = ratio(k);
+      if (r <= 0) uneven = true;  // a contour gone
+      sum += r;
+      ++count;
+    }
+    if (!uneven && count > 0 && b0.areas[b] > 0 && at[b] > 0) {
+      const double width = sum / count, height = at[b] / b0.areas[b] / width;
+      uneven = height > limit * width || width > limit * height;
+    }
+    if (!uneven) continue;
+    if (b > 0) held.insert(b0.slice_ids[b - 1]);
+    if (b < n) held.insert(b0.slice_ids[b]);
   }
 }
 
@@ -326,6 +469,20 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   const std::size_t nv = frame0.positions.size();
   const auto nb = vertex_neighbours(nv, frame0.triangles);
   const std::vector<Chain> chains = find_chains(seq, frame0);
+  Bands bands;  // frame 0's, between the chains' slices
+  {
+    std::map<double, int> by_height;
+    for (const Chain& c : chains) by_height[dot(c.plane.origin, seq.normal)] = c.slice;
+    for (const auto& [h, id] : by_height) {
+      bands.heights.push_back(h);
+      bands.slice_ids.push_back(id);
+    }
+    bands.areas = band_areas(frame0.positions, frame0.triangles, seq.normal, bands.heights);
+    bands.perimeters = slice_perimeters(seq.frames.front());
+  }
+  std::vector<std::vector<std::uint32_t>> incident(nv);
+  for (std::size_t f = 0; f < frame0.triangles.size(); ++f)
+    for (std::uint32_t v : frame0.triangles[f]) incident[v].push_back(static_cast<std::uint32_t>(f));
   // Per vertex, the edges opposite it in its triangles, in the triangles' (outward) order.
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> opposite(nv);
   for (const Triangle& tri : frame0.triangles)
@@ -353,7 +510,9 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   for (const Triangle& tri : frame0.triangles)
     edge_lengths.push_back(distance(frame0.positions[tri[0]], frame0.positions[tri[1]]));
   std::nth_element(edge_lengths.begin(), edge_lengths.begin() + static_cast<std::ptrdiff_t>(edge_lengths.size() / 2), edge_lengths.end());
-  const double pin_spacing = edge_lengths.empty() ? 0.0 : opt.pin_spacing * edge_lengths[edge_lengths.size() / 2];
+  const double median_edge = edge_lengths.empty() ? 0.0 : edge_lengths[edge_lengths.size() / 2];
+  const double pin_spacing = opt.pin_spacing * median_edge;
+  const double slide_spacing = project ? opt.slide_spacing * median_edge : 0.0;
   std::map<int, int> counts;
   for (const Slice& s0 : seq.frames.front().slices) counts[s0.id] = static_cast<int>(s0.contours.size());
   SparseMatrix LtL;
@@ -373,7 +532,12 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     if (opt.vertical_deformation) vertical_predeformation(seq, frame0.triangles, static_cast<int>(t), opt, x);
     MorphFrameReport& fr = rep.frames[t];
     std::vector<ChainTarget> matched;
-    match_chains(seq, chains, x, static_cast<int>(t), opt, pin_spacing, matched, fr, rep.events, counts);
+    std::vector<std::vector<Vec3>> lines;  // the matched contours of frame t
+    std::set<int> held;                    // slices whose chains do not slide in the relaxation
+    match_chains(seq, chains, x, static_cast<int>(t), opt, pin_spacing, slide_spacing, matched, lines, held, fr,
+                 rep.events, counts);
+    if (project && slide_spacing > 0)
+      hold_uneven_bands(bands, surfaces[t], seq.frames[t], seq.normal, opt.slide_anisotropy, held);
     std::vector<std::pair<std::uint32_t, Vec3>> pins;
     for (const ChainTarget& m : matched)
       if (m.pinned) pins.push_back({m.vertex, m.position});
@@ -403,6 +567,33 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       pinned[v] = 1;
       x[v] = p;
     }
+    // Sliding chain vertices: the contour they stay on, and the segment they were last found on.
+    std::vector<std::int32_t> slide_line(nv, -1), slide_hint(nv, -1);
+    std::vector<char> sliding(nv, 0);  // slides through the relaxation (else only snapped after it, if harmless)
+    for (const ChainTarget& m : matched)
+      if (m.line >= 0 && !pinned[m.vertex]) {
+        slide_line[m.vertex] = m.line;
+        sliding[m.vertex] = !held.count(m.slice);
+      }
+    auto slide = [&](std::size_t i, Vec3 p) {
+      return closest_on_loop(lines[static_cast<std::size_t>(slide_line[i])], p, slide_hint[i]);
+    };
+    std::vector<char> on_contour(nv, 0);
+    // Whether moving vertex i to p keeps its ring: no triangle turned by more than 60°, and the ring's
+    // smallest angle at least as large as before or as the repair's target.
+    auto harmless = [&](std::size_t i, Vec3 p, double floor_deg) {
+      double before = 180, after = 180;
+      for (std::uint32_t f : incident[i]) {
+        const Triangle& tri = frame0.triangles[f];
+        Vec3 c[3];
+        for (std::size_t k = 0; k < 3; ++k) c[k] = tri[k] == i ? p : x[tri[k]];
+        const Vec3 n0 = cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]), n1 = cross(c[1] - c[0], c[2] - c[0]);
+        if (dot(n0, n1) <= 0.5 * norm(n0) * norm(n1)) return false;
+        before = std::min(before, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
+        after = std::min(after, min_angle_deg(c[0], c[1], c[2]));
+      }
+      return after >= std::min(before, floor_deg);
+    };
 
     if (project) {
       // 2. Laplacian-regularised projection onto the frame's own surface; pinned vertices held on
@@ -442,68 +633,147 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       }
       fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
       fr.projection_max = mx;
-      // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
-      const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
-      for (int r = 0; r < opt.relax_iterations; ++r) {
-        std::vector<Vec3> vel(nv, Vec3{});
-        std::vector<Vec3> moved = x;
-        const double beta = opt.relax_momentum;
-        for (int sweep = 0; sweep < opt.relax_sweeps; ++sweep) {
-          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-              if (pinned[i]) continue;
-              const Vec3 xi = x[i], n = normals[i];
-              const std::uint32_t* ring = ring_index.data() + ring_start[i];
-              const std::size_t m = ring_start[i + 1] - ring_start[i];
-              if (m == 0) continue;
-              // Umbrella (uniform Laplacian) move, optionally blended with springs whose rest lengths are
-              // frame 0's edges scaled by the change of area: the springs' equilibrium is a similar copy of
-              // frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone can
-              // tangle under strong compression, so the default is the umbrella alone.
-              Vec3 c{}, g{}, mid{}, sp{};
-              for (std::size_t k = 0; k < m; ++k) {
-                const Vec3 e = x[ring[k]] - xi;
-                c += e;
-                if (opt.spring_weight != 0) {
-                  const double len = norm(e);
-                  if (len > 0) sp += std::clamp((len - scale * ring_rest[ring_start[i] + k]) / len, -0.3, 0.3) * e;
-                }
-              }
-              if (opt.shape_weight > 0) {
-                // Equilateral pull: the mean of the apexes of equilateral triangles raised, in the tangent
-                // plane, on the edges (j, k) opposite the vertex: midpoint + √3/2 · n × e · |e| / |n × e|.
-                for (std::size_t k = opp_start[i]; k < opp_start[i + 1]; ++k) {
-                  const Vec3 a = x[opp_index[2 * k]] - xi, b = x[opp_index[2 * k + 1]] - xi;
-                  const Vec3 e = b - a;
-                  mid += a + b;
-                  const double ee = dot(e, e), ne = dot(n, e), s2 = ee - ne * ne;
-                  if (s2 > 1e-300) g += std::sqrt(ee / s2) * e;
-                }
-              }
-              const double inv = 1.0 / static_cast<double>(m);
-              Vec3 d = (opt.spring_weight * sp + (1.0 - opt.spring_weight) * c) * inv;
-              if (opt.shape_weight > 0) {
-                const double no = static_cast<double>(opp_start[i + 1] - opp_start[i]);
-                const Vec3 pull = (0.5 * mid + 0.8660254037844386 * cross(n, g)) / std::max(1.0, no);
-                d = (1.0 - opt.shape_weight) * d + opt.shape_weight * pull;
-              }
-              d -= dot(d, n) * n;
-              vel[i] = beta * vel[i] + opt.relax_step * d;
-              moved[i] = xi + vel[i];
-            }
-          });
-          std::swap(x, moved);
+      // Sliding chains hold the bands between them to frame 0's vertex count: where that crowds a band
+      // too much (a branch point about to cross a slice), the frame is done again without sliding.
+      const std::vector<Vec3> x_start = x, normals_start = normals;
+      const std::vector<std::int32_t> hints_start = proj.hints;
+      const bool any_sliding = std::find(sliding.begin(), sliding.end(), 1) != sliding.end();
+      for (int attempt = 0; attempt < 2; ++attempt) {
+        if (attempt == 1) {
+          x = x_start;
+          normals = normals_start;
+          proj.hints = hints_start;
+          std::fill(sliding.begin(), sliding.end(), 0);
+          std::fill(on_contour.begin(), on_contour.end(), 0);
+          std::fill(slide_hint.begin(), slide_hint.end(), -1);
+          fr.sliding = 0;
+          fr.sliding_undone = true;
         }
-        std::vector<Vec3> q = proj.project(x, &normals);
+        // Chain vertices of matched contours go onto their contour (the closest point) and slide along
+        // it from here on: the mesh then passes through the frame's contours, not only near them.
         for (std::size_t i = 0; i < nv; ++i)
-          if (!pinned[i]) x[i] = q[i];
+          if (sliding[i]) {
+            x[i] = slide(i, x[i]);
+            on_contour[i] = 1;
+            ++fr.sliding;
+          }
+        // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
+        const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
+        for (int r = 0; r < opt.relax_iterations; ++r) {
+          std::vector<Vec3> vel(nv, Vec3{});
+          std::vector<Vec3> moved = x;
+          const double beta = opt.relax_momentum;
+          for (int sweep = 0; sweep < opt.relax_sweeps; ++sweep) {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
+              for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                if (pinned[i]) continue;
+                const Vec3 xi = x[i], n = normals[i];
+                const std::uint32_t* ring = ring_index.data() + ring_start[i];
+                const std::size_t m = ring_start[i + 1] - ring_start[i];
+                if (m == 0) continue;
+                // Umbrella (uniform Laplacian) move, optionally blended with springs whose rest lengths are
+                // frame 0's edges scaled by the change of area: the springs' equilibrium is a similar copy of
+                // frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone can
+                // tangle under strong compression, so the default is the umbrella alone.
+                Vec3 c{}, g{}, mid{}, sp{};
+                for (std::size_t k = 0; k < m; ++k) {
+                  const Vec3 e = x[ring[k]] - xi;
+                  c += e;
+                  if (opt.spring_weight != 0) {
+                    const double len = norm(e);
+                    if (len > 0) sp += std::clamp((len - scale * ring_rest[ring_start[i] + k]) / len, -0.3, 0.3) * e;
+                  }
+                }
+                if (opt.shape_weight > 0) {
+                  // Equilateral pull: the mean of the apexes of equilateral triangles raised, in the tangent
+                  // plane, on the edges (j, k) opposite the vertex: midpoint + √3/2 · n × e · |e| / |n × e|.
+                  for (std::size_t k = opp_start[i]; k < opp_start[i + 1]; ++k) {
+                    const Vec3 a = x[opp_index[2 * k]] - xi, b = x[opp_index[2 * k + 1]] - xi;
+                    const Vec3 e = b - a;
+                    mid += a + b;
+                    const double ee = dot(e, e), ne = dot(n, e), s2 = ee - ne * ne;
+                    if (s2 > 1e-300) g += std::sqrt(ee / s2) * e;
+                  }
+                }
+                const double inv = 1.0 / static_cast<double>(m);
+                Vec3 d = (opt.spring_weight * sp + (1.0 - opt.spring_weight) * c) * inv;
+                if (opt.shape_weight > 0) {
+                  const double no = static_cast<double>(opp_start[i + 1] - opp_start[i]);
+                  const Vec3 pull = (0.5 * mid + 0.8660254037844386 * cross(n, g)) / std::max(1.0, no);
+                  d = (1.0 - opt.shape_weight) * d + opt.shape_weight * pull;
+                }
+                d -= dot(d, n) * n;
+                vel[i] = beta * vel[i] + opt.relax_step * d;
+                moved[i] = xi + vel[i];
+                if (sliding[i]) {
+                  moved[i] = slide(i, moved[i]);
+                  vel[i] = moved[i] - xi;
+                }
+              }
+            });
+            std::swap(x, moved);
+          }
+          std::vector<Vec3> q = proj.project(x, &normals);
+          for (std::size_t i = 0; i < nv; ++i)
+            if (!pinned[i] && !sliding[i]) x[i] = q[i];
+        }
+        // 3b. Chain vertices of matched contours onto their contour (the closest point), where their ring
+        //     keeps its smallest angle (or 32°): the mesh then passes through the frame's contours, not only
+        //     near them. They slide along it in the repair below. Elsewhere (a contour that shrank, crowding
+        //     its chain) they stay where the relaxation put them.
+        for (int pass = 0; pass < 2; ++pass)
+          for (std::size_t i = 0; i < nv; ++i) {
+            if (slide_line[i] < 0 || on_contour[i]) continue;
+            std::int32_t hint = slide_hint[i];
+            const Vec3 q = closest_on_loop(lines[static_cast<std::size_t>(slide_line[i])], x[i], hint);
+            if (!harmless(i, q, opt.angle_repair.target_deg)) continue;
+            x[i] = q;
+            slide_hint[i] = hint;
+            on_contour[i] = 1;
+            ++fr.sliding;
+          }
+        // 3c. Where the contour turns by more than corner_angle_deg, the nearest vertex on it moves onto
+        //     the corner exactly and stays there (else the edges beside it cut the corner).
+        std::vector<char> fixed = pinned;
+        {
+          std::vector<std::vector<std::uint32_t>> on_line(lines.size());
+          for (std::size_t i = 0; i < nv; ++i)
+            if (on_contour[i]) on_line[static_cast<std::size_t>(slide_line[i])].push_back(static_cast<std::uint32_t>(i));
+          const double cos_corner = std::cos(opt.corner_angle_deg * 3.14159265358979323846 / 180.0);
+          for (std::size_t l = 0; l < lines.size(); ++l) {
+            const std::vector<Vec3>& L = lines[l];
+            const std::size_t n = L.size();
+            for (std::size_t k = 0; k < n && !on_line[l].empty(); ++k) {
+              const Vec3 a = L[k] - L[(k + n - 1) % n], b = L[(k + 1) % n] - L[k];
+              const double la = norm(a), lb = norm(b);
+              if (la <= 0 || lb <= 0 || dot(a, b) > cos_corner * la * lb) continue;  // turns less
+              std::uint32_t best = on_line[l].front();
+              for (std::uint32_t v : on_line[l])
+                if (distance(x[v], L[k]) < distance(x[best], L[k])) best = v;
+              // Up to two edges away; its ring may drop to 20° (the repair below works around it).
+              if (fixed[best] || distance(x[best], L[k]) > 2.0 * median_edge || !harmless(best, L[k], 20.0)) continue;
+              x[best] = L[k];
+              fixed[best] = 1;
+            }
+          }
+        }
+        // 4. The few triangles the relaxation leaves thin (saddles of splitting contours): their vertices
+        //    move within the frame's surface (along their contour when on one) to maximise their ring's
+        //    smallest angle.
+        auto snap_to = [&](std::uint32_t v, Vec3 c) {
+          return on_contour[v] ? slide(v, c) : surface.closest(c, nullptr, &proj.hints[v]);
+        };
+        if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, fixed, snap_to, opt.untangle_rounds);
+        if (opt.angle_repair.passes > 0)
+          fr.angle_repairs = repair_small_angles(x, frame0.triangles, fixed, snap_to, opt.angle_repair);
+        if (attempt == 1 || !any_sliding || fr.intersecting_pairs > 0) {
+          if (attempt == 0 && any_sliding) continue;
+          break;
+        }
+        double worst = 180;
+        for (const Triangle& tri : frame0.triangles) worst = std::min(worst, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
+        if (worst >= opt.slide_min_angle_deg) break;
       }
-      // 4. The few triangles the relaxation leaves thin (saddles of splitting contours): their vertices
-      //    move within the frame's surface to maximise their ring's smallest angle.
-      auto snap_to = [&](std::uint32_t v, Vec3 c) { return surface.closest(c, nullptr, &proj.hints[v]); };
-      if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, pinned, snap_to, opt.untangle_rounds);
-      if (opt.angle_repair.passes > 0)
-        fr.angle_repairs = repair_small_angles(x, frame0.triangles, pinned, snap_to, opt.angle_repair);
     }
     for (const Vec3& p : x)
       if (!is_finite(p))

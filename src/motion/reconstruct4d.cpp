@@ -27,7 +27,12 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   tbb::parallel_for(std::size_t(0), count, [&](std::size_t f) {
     try {
       SurfaceOptions so = options.surface;
-      if (f > 0 && options.fast_targets) so.rows = true;
+      if (f > 0 && options.fast_targets) {
+        // Only the geometry of later frames is used (the morph projects onto it): no self-intersection test.
+        // The small-angle repair stays: the relaxation takes its tangent planes from the landing triangles.
+        so.rows = true;
+        so.check_self_intersections = false;
+      }
       surfaces[f] = reconstruct_frame(seq, static_cast<int>(f), so, &rep.surfaces[f]);
     } catch (...) {
       errors[f] = std::current_exception();

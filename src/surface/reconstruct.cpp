@@ -667,6 +667,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   rep.triangles = out.triangles.size();
   rep.closed = fin.closed_manifold();
   rep.self_intersects = fin.self_intersects;
+  rep.self_intersections_checked = opt.check_self_intersections;
   rep.euler = fin.euler;
   rep.components = static_cast<int>(fin.components);
   rep.volume = fin.signed_volume;

@@ -31,6 +31,18 @@ struct MorphOptions {
   double pin_spacing = 0.0;        //!< > 0: also hold frame-0 contour vertices on later contours, at least this ×
                                    //!< the median edge apart; 0: none held (they guide the RBF, the fit comes
                                    //!< from each frame's own surface; best triangles)
+  double slide_spacing = 0.75;     //!< RbfProject: > 0: frame-0 contour vertices of a contour matched in the later frame
+                                   //!< slide along that frame's contour (input polyline) through the relaxation and
+                                   //!< the repair, at least this × the median edge apart along it (where the contour
+                                   //!< shrank, the ones between relax on the surface); 0: none (they relax on the
+                                   //!< surface, off the contour by up to the chordal error of the triangles)
+  double slide_anisotropy = 1.1;   //!< chains beside a band whose height scaled more than this × its width (or its
+                                   //!< width more than this × its height) since frame 0 do not slide: the band's
+                                   //!< vertices must move through their planes to keep their triangles
+  double corner_angle_deg = 30;    //!< a matched contour turning more than this at one of its points gets the nearest
+                                   //!< vertex on it exactly there (as frame 0's resampled contours keep such corners)
+  double slide_min_angle_deg = 25;  //!< a frame whose sliding left a triangle angle below this (or crossing triangles)
+                                     //!< is done again without sliding
   int projection_iterations = 3;   //!< regularised projection rounds (RbfProject); the relaxation re-projects
   double stiffness = 1.0;          //!< weight of the Laplacian term against the closest-point term
   int relax_iterations = 4;        //!< tangential relaxation rounds, each ended by an exact re-projection
@@ -77,6 +89,8 @@ struct MorphFrameReport {
   int sources = 0;             //!< RBF source points
   std::size_t intersecting_pairs = 0;  //!< triangle pairs still intersecting after untangling (RbfProject)
   std::size_t angle_repairs = 0;  //!< vertex moves of the small-angle repair
+  std::size_t sliding = 0;     //!< contour-chain vertices kept on their contour (MorphOptions::slide_spacing)
+  bool sliding_undone = false;  //!< the frame was done again without sliding (MorphOptions::slide_min_angle_deg)
   double projection_max = 0;   //!< max distance (mm) from the frame's surface before the final projection
   double projection_mean = 0;  //!< mean of the same
 };

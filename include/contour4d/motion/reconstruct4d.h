@@ -18,7 +18,8 @@ struct Reconstruct4DOptions {
   SurfaceOptions surface;  //!< the one-frame surface (frame 0, and each frame's target for RbfProject)
   MorphOptions morph;      //!< the deformation through the frames
   bool fast_targets = true;   //!< frames after 0 only give geometry (frame 0's triangles are carried):
-                              //!< build their surfaces with interpolated rows (SurfaceOptions::rows), fast
+                              //!< build their surfaces with interpolated rows (SurfaceOptions::rows) and
+                              //!< without the self-intersection test (not reported)
   std::function<void(const char* stage, int done, int total)> progress;  //!< optional progress callback
 };
 

@@ -59,6 +59,7 @@ struct SurfaceReport {
   std::size_t triangles = 0;   //!< output triangle count
   bool closed = false;         //!< closed 2-manifold, consistently oriented
   bool self_intersects = false;  //!< CGAL found intersecting triangles (when checked)
+  bool self_intersections_checked = false;  //!< the self-intersection test ran (SurfaceOptions::check_self_intersections)
   long euler = 0;              //!< Euler characteristic V - E + F
   int components = 0;          //!< connected components
   double volume = 0.0;         //!< signed volume (mm³), > 0 when outward
