@@ -633,11 +633,12 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       }
       fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
       fr.projection_max = mx;
-      // Sliding chains hold the bands between them to frame 0's vertex count: where that crowds a band
-      // too much (a branch point about to cross a slice), the frame is done again without sliding.
+      // Sliding chains hold the bands between them to frame 0's vertex count, and snapped vertices pull
+      // their rings: where that leaves a triangle angle below slide_min_angle_deg or crossing triangles
+      // (a band crowded as a branch point nears a slice), the frame is done again with no vertex put on
+      // a contour.
       const std::vector<Vec3> x_start = x, normals_start = normals;
       const std::vector<std::int32_t> hints_start = proj.hints;
-      const bool any_sliding = std::find(sliding.begin(), sliding.end(), 1) != sliding.end();
       for (int attempt = 0; attempt < 2; ++attempt) {
         if (attempt == 1) {
           x = x_start;
@@ -721,7 +722,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         //     keeps its smallest angle (or 32°): the mesh then passes through the frame's contours, not only
         //     near them. They slide along it in the repair below. Elsewhere (a contour that shrank, crowding
         //     its chain) they stay where the relaxation put them.
-        for (int pass = 0; pass < 2; ++pass)
+        for (int pass = 0; pass < 2 && attempt == 0; ++pass)
           for (std::size_t i = 0; i < nv; ++i) {
             if (slide_line[i] < 0 || on_contour[i]) continue;
             std::int32_t hint = slide_hint[i];
@@ -766,13 +767,12 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, fixed, snap_to, opt.untangle_rounds);
         if (opt.angle_repair.passes > 0)
           fr.angle_repairs = repair_small_angles(x, frame0.triangles, fixed, snap_to, opt.angle_repair);
-        if (attempt == 1 || !any_sliding || fr.intersecting_pairs > 0) {
-          if (attempt == 0 && any_sliding) continue;
-          break;
+        if (attempt == 1 || fr.sliding == 0) break;  // nothing was put on a contour: nothing to undo
+        if (fr.intersecting_pairs == 0) {
+          double worst = 180;
+          for (const Triangle& tri : frame0.triangles) worst = std::min(worst, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
+          if (worst >= opt.slide_min_angle_deg) break;
         }
-        double worst = 180;
-        for (const Triangle& tri : frame0.triangles) worst = std::min(worst, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
-        if (worst >= opt.slide_min_angle_deg) break;
       }
     }
     for (const Vec3& p : x)
