@@ -111,7 +111,7 @@ int run_reconstruct(const ReconstructArgs& a) {
                         {"rbf_sources", mf.sources},
                         {"angle_repair_moves", mf.angle_repairs},
                         {"sliding_contour_vertices", mf.sliding},
-                        {"sliding_undone", mf.sliding_undone},
+                        {"redone", mf.redone},
                         {"intersecting_pairs_after_untangling", mf.intersecting_pairs},
                         {"projection_mean_mm", mf.projection_mean},
                         {"projection_max_mm", mf.projection_max},

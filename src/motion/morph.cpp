@@ -633,14 +633,20 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       }
       fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
       fr.projection_max = mx;
-      // Sliding chains hold the bands between them to frame 0's vertex count, and snapped vertices pull
-      // their rings: where that leaves a triangle angle below slide_min_angle_deg or crossing triangles
-      // (a band crowded as a branch point nears a slice), the frame is done again with no vertex put on
-      // a contour.
+      // A frame that ends with a triangle angle below retry_min_angle_deg or with crossing triangles (a
+      // band crowded as a branch point nears a slice or a contour shrinks fast; sliding chains hold the
+      // bands between them to frame 0's vertex count) is done again with no vertex put on a contour and
+      // retry_sweep_factor times the sweeps; the better of the two (fewer crossings, then the larger
+      // smallest angle) is kept.
       const std::vector<Vec3> x_start = x, normals_start = normals;
       const std::vector<std::int32_t> hints_start = proj.hints;
+      std::vector<Vec3> first;
+      MorphFrameReport first_report;
+      double first_worst = 0;
       for (int attempt = 0; attempt < 2; ++attempt) {
         if (attempt == 1) {
+          first = x;
+          first_report = fr;
           x = x_start;
           normals = normals_start;
           proj.hints = hints_start;
@@ -648,8 +654,9 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
           std::fill(on_contour.begin(), on_contour.end(), 0);
           std::fill(slide_hint.begin(), slide_hint.end(), -1);
           fr.sliding = 0;
-          fr.sliding_undone = true;
+          fr.redone = true;
         }
+        const int sweeps = opt.relax_sweeps * (attempt == 0 ? 1 : std::max(1, opt.retry_sweep_factor));
         // Chain vertices of matched contours go onto their contour (the closest point) and slide along
         // it from here on: the mesh then passes through the frame's contours, not only near them.
         for (std::size_t i = 0; i < nv; ++i)
@@ -664,7 +671,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
           std::vector<Vec3> vel(nv, Vec3{});
           std::vector<Vec3> moved = x;
           const double beta = opt.relax_momentum;
-          for (int sweep = 0; sweep < opt.relax_sweeps; ++sweep) {
+          for (int sweep = 0; sweep < sweeps; ++sweep) {
             tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
               for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 if (pinned[i]) continue;
@@ -767,11 +774,16 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, fixed, snap_to, opt.untangle_rounds);
         if (opt.angle_repair.passes > 0)
           fr.angle_repairs = repair_small_angles(x, frame0.triangles, fixed, snap_to, opt.angle_repair);
-        if (attempt == 1 || fr.sliding == 0) break;  // nothing was put on a contour: nothing to undo
-        if (fr.intersecting_pairs == 0) {
-          double worst = 180;
-          for (const Triangle& tri : frame0.triangles) worst = std::min(worst, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
-          if (worst >= opt.slide_min_angle_deg) break;
+        double worst = 180;
+        for (const Triangle& tri : frame0.triangles) worst = std::min(worst, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
+        if (attempt == 0) {
+          first_worst = worst;
+          if (fr.intersecting_pairs == 0 && worst >= opt.retry_min_angle_deg) break;
+        } else if (first_report.intersecting_pairs < fr.intersecting_pairs ||
+                   (first_report.intersecting_pairs == fr.intersecting_pairs && first_worst >= worst)) {
+          x = std::move(first);  // the first was better after all
+          fr = first_report;
+          fr.redone = true;
         }
       }
     }
