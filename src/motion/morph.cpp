@@ -355,6 +355,39 @@ void hold_uneven_bands(const Bands& b0, const TriangleMesh& surface, const Frame
   }
 }
 
+// What decides whether a frame is redone, and which of two tries is kept.
+struct FrameQuality {
+  std::size_t crossings = 0;  // intersecting triangle pairs left
+  double worst = 0;           // smallest angle (degrees)
+  double good = 0;            // share of angles in 40–80°
+};
+
+FrameQuality frame_quality(const std::vector<Vec3>& x, const std::vector<Triangle>& tris, std::size_t crossings) {
+  FrameQuality q{crossings, 180, 0};
+  std::size_t good = 0;
+  for (const Triangle& t : tris) {
+    const Vec3 p[3] = {x[t[0]], x[t[1]], x[t[2]]};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+      const double nu = norm(u), nv = norm(v);
+      const double a = nu > 0 && nv > 0 ? std::acos(std::clamp(dot(u, v) / (nu * nv), -1.0, 1.0)) * 180.0 / 3.14159265358979323846 : 0.0;
+      q.worst = std::min(q.worst, a);
+      good += a >= 40 && a <= 80;
+    }
+  }
+  q.good = tris.empty() ? 1.0 : static_cast<double>(good) / (3.0 * static_cast<double>(tris.size()));
+  return q;
+}
+
+// a better than b: fewer crossings; then above the angle floor; then the larger smallest angle below it,
+// or the larger share of good angles above it.
+bool better(const FrameQuality& a, const FrameQuality& b, double floor_deg) {
+  if (a.crossings != b.crossings) return a.crossings < b.crossings;
+  const bool fa = a.worst >= floor_deg, fb = b.worst >= floor_deg;
+  if (fa != fb) return fa;
+  return fa ? a.good > b.good : a.worst > b.worst;
+}
+
 // Adds the vertex farthest from the sources' plane as a fixed point when all sources are coplanar
 // (the paper's "far point"), so the RBF system stays regular.
 void add_far_point(const std::vector<Vec3>& verts, const Vec3& normal, std::vector<Vec3>& src, std::vector<Vec3>& dst) {
@@ -633,16 +666,16 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       }
       fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
       fr.projection_max = mx;
-      // A frame that ends with a triangle angle below retry_min_angle_deg or with crossing triangles (a
-      // band crowded as a branch point nears a slice or a contour shrinks fast; sliding chains hold the
-      // bands between them to frame 0's vertex count) is done again with no vertex put on a contour and
-      // retry_sweep_factor times the sweeps; the better of the two (fewer crossings, then the larger
-      // smallest angle) is kept.
+      // A frame that ends with a triangle angle below retry_min_angle_deg, fewer than retry_min_good_share
+      // of its angles in 40–80° or crossing triangles (a band crowded as a branch point nears a slice or a
+      // contour shrinks fast; sliding chains hold the bands between them to frame 0's vertex count) is
+      // done again with no vertex put on a contour and retry_sweep_factor times the sweeps; the better of
+      // the two is kept.
       const std::vector<Vec3> x_start = x, normals_start = normals;
       const std::vector<std::int32_t> hints_start = proj.hints;
       std::vector<Vec3> first;
       MorphFrameReport first_report;
-      double first_worst = 0;
+      FrameQuality first_quality;
       for (int attempt = 0; attempt < 2; ++attempt) {
         if (attempt == 1) {
           first = x;
@@ -774,13 +807,11 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, fixed, snap_to, opt.untangle_rounds);
         if (opt.angle_repair.passes > 0)
           fr.angle_repairs = repair_small_angles(x, frame0.triangles, fixed, snap_to, opt.angle_repair);
-        double worst = 180;
-        for (const Triangle& tri : frame0.triangles) worst = std::min(worst, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
+        const FrameQuality q = frame_quality(x, frame0.triangles, fr.intersecting_pairs);
         if (attempt == 0) {
-          first_worst = worst;
-          if (fr.intersecting_pairs == 0 && worst >= opt.retry_min_angle_deg) break;
-        } else if (first_report.intersecting_pairs < fr.intersecting_pairs ||
-                   (first_report.intersecting_pairs == fr.intersecting_pairs && first_worst >= worst)) {
+          first_quality = q;
+          if (q.crossings == 0 && q.worst >= opt.retry_min_angle_deg && q.good >= opt.retry_min_good_share) break;
+        } else if (!better(q, first_quality, opt.retry_min_angle_deg)) {
           x = std::move(first);  // the first was better after all
           fr = first_report;
           fr.redone = true;

@@ -41,10 +41,12 @@ struct MorphOptions {
                                    //!< vertices must move through their planes to keep their triangles
   double corner_angle_deg = 30;    //!< a matched contour turning more than this at one of its points gets the nearest
                                    //!< vertex on it exactly there (as frame 0's resampled contours keep such corners)
-  double retry_min_angle_deg = 25;  //!< a frame left with a triangle angle below this (or crossing triangles) is done
-                                     //!< again with no vertex put on a contour and retry_sweep_factor × the sweeps;
-                                     //!< the better result is kept
-  int retry_sweep_factor = 3;      //!< see retry_min_angle_deg (biv-me frame 6: 61 → 0 triangles below 25°)
+  double retry_min_angle_deg = 25;  //!< a frame left with a triangle angle below this, fewer than retry_min_good_share
+                                     //!< of its angles in 40–80° or crossing triangles is done again with no vertex
+                                     //!< put on a contour and retry_sweep_factor × the sweeps; the better is kept
+  double retry_min_good_share = 0.85;  //!< see retry_min_angle_deg
+  int retry_sweep_factor = 6;      //!< see retry_min_angle_deg (biv-me frame 6: 61 → 0 triangles below 25°,
+                                   //!< 78 → 85 % of angles in 40–80°)
   int projection_iterations = 3;   //!< regularised projection rounds (RbfProject); the relaxation re-projects
   double stiffness = 1.0;          //!< weight of the Laplacian term against the closest-point term
   int relax_iterations = 4;        //!< tangential relaxation rounds, each ended by an exact re-projection
