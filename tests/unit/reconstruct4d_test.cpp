@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
 #include "contour4d/io/contours_json.h"
@@ -119,6 +120,31 @@ TEST(Reconstruct4D, OutputIsByteIdenticalAtOneAndTwoThreads) {
     const fs::path other = dir / "out2" / fs::relative(e.path(), dir / "out1");
     EXPECT_EQ(slurp(e.path()), slurp(other)) << e.path();
   }
+  fs::remove_all(dir);
+}
+
+// report.json per frame (docs/cli.md): the morph's figures, and the frames' own surfaces, which after frame 0
+// are only projection targets and not tested for self-intersections (null, not false).
+TEST(Reconstruct4D, ReportListsTheMorphFiguresPerFrame) {
+  const Phantom p = small_ellipsoid();
+  const fs::path dir = fs::temp_directory_path() / ("c4d_report_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write_file_atomic(dir / "c.json", format_contours_json(p.contours));
+  const std::string cmd = std::string(C4D_CLI) + " reconstruct " + (dir / "c.json").string() + " -o " +
+                          (dir / "out").string() + " > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const nlohmann::json r = nlohmann::json::parse(slurp(dir / "out" / "report.json"));
+  const auto& frames = r.at("frames");
+  ASSERT_EQ(frames.size(), p.contours.frames.size());
+  EXPECT_TRUE(frames[0].at("surface").at("self_intersects").is_boolean());
+  long slid = 0;
+  for (std::size_t f = 1; f < frames.size(); ++f) {
+    EXPECT_TRUE(frames[f].at("surface").at("self_intersects").is_null()) << f;
+    EXPECT_TRUE(frames[f].at("redone").is_boolean()) << f;
+    slid += frames[f].at("sliding_contour_vertices").get<long>();
+  }
+  EXPECT_GT(slid, 0);
   fs::remove_all(dir);
 }
 
