@@ -103,18 +103,26 @@ std::string slurp(const fs::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// DEVELOPERS.md rule 4: byte-identical output whatever the thread count.
-TEST(Reconstruct4D, OutputIsByteIdenticalAtOneAndTwoThreads) {
-  const Phantom p = small_ellipsoid();
-  const fs::path dir = fs::temp_directory_path() / ("c4d_threads_" + std::to_string(::getpid()));
+// A fresh temporary folder holding the phantom's contours as c.json.
+fs::path folder_with_contours(const Phantom& p, const std::string& tag) {
+  const fs::path dir = fs::temp_directory_path() / ("c4d_" + tag + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   write_file_atomic(dir / "c.json", format_contours_json(p.contours));
-  for (int t : {1, 2}) {
-    const std::string cmd = std::string(C4D_CLI) + " reconstruct " + (dir / "c.json").string() + " -o " +
-                            (dir / ("out" + std::to_string(t))).string() + " --threads " + std::to_string(t) + " > /dev/null";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  }
+  return dir;
+}
+
+// `contour4d reconstruct DIR/c.json -o DIR/OUT EXTRA`; the shell command when it fails, else empty.
+std::string reconstruct_cli(const fs::path& dir, const std::string& out, const std::string& extra = "") {
+  const std::string cmd = std::string(C4D_CLI) + " reconstruct " + (dir / "c.json").string() + " -o " +
+                          (dir / out).string() + " " + extra + " > /dev/null";
+  return std::system(cmd.c_str()) == 0 ? std::string() : cmd;
+}
+
+// DEVELOPERS.md rule 4: byte-identical output whatever the thread count.
+TEST(Reconstruct4D, OutputIsByteIdenticalAtOneAndTwoThreads) {
+  const fs::path dir = folder_with_contours(small_ellipsoid(), "threads");
+  for (int t : {1, 2}) ASSERT_EQ(reconstruct_cli(dir, "out" + std::to_string(t), "--threads " + std::to_string(t)), "");
   for (const auto& e : fs::recursive_directory_iterator(dir / "out1")) {
     if (!e.is_regular_file()) continue;
     const fs::path other = dir / "out2" / fs::relative(e.path(), dir / "out1");
@@ -127,13 +135,8 @@ TEST(Reconstruct4D, OutputIsByteIdenticalAtOneAndTwoThreads) {
 // are only projection targets and not tested for self-intersections (null, not false).
 TEST(Reconstruct4D, ReportListsTheMorphFiguresPerFrame) {
   const Phantom p = small_ellipsoid();
-  const fs::path dir = fs::temp_directory_path() / ("c4d_report_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  write_file_atomic(dir / "c.json", format_contours_json(p.contours));
-  const std::string cmd = std::string(C4D_CLI) + " reconstruct " + (dir / "c.json").string() + " -o " +
-                          (dir / "out").string() + " > /dev/null";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const fs::path dir = folder_with_contours(p, "report");
+  ASSERT_EQ(reconstruct_cli(dir, "out"), "");
   const nlohmann::json r = nlohmann::json::parse(slurp(dir / "out" / "report.json"));
   const auto& frames = r.at("frames");
   ASSERT_EQ(frames.size(), p.contours.frames.size());
