@@ -25,6 +25,7 @@
 
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/errors.h"
+#include "contour4d/metrics/quality.h"
 #include "contour4d/motion/contour_matching.h"
 #include "contour4d/motion/rbf.h"
 #include "contour4d/motion/section.h"
@@ -195,10 +196,12 @@ Vec3 closest_on_loop(const std::vector<Vec3>& loop, Vec3 q, std::int32_t& hint) 
 }
 
 // Matches the chains (at their current positions) to the contours of `frame`, one-to-one per slice;
-// fills `target` for every vertex of a matched chain. Reports slices whose contour count changed.
+// fills `target` for every vertex of a matched chain and `lines` with the matched contours. Reports
+// slices whose contour count changed; `unmatched` gets them, those changing into the next frame, and
+// those with a chain left without partner.
 void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const std::vector<Vec3>& x, int frame,
                   const MorphOptions& opt, double pin_spacing, double slide_spacing, std::vector<ChainTarget>& targets,
-                  std::vector<std::vector<Vec3>>& lines, std::set<int>& held, MorphFrameReport& fr,
+                  std::vector<std::vector<Vec3>>& lines, std::set<int>& unmatched, MorphFrameReport& fr,
                   std::vector<SliceEvent>& events, std::map<int, int>& previous_counts) {
   std::map<int, std::vector<std::size_t>> by_slice;
   for (std::size_t c = 0; c < chains.size(); ++c) by_slice[chains[c].slice].push_back(c);
@@ -206,22 +209,20 @@ void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const s
   std::map<int, int> counts;
   for (const Slice& s : target.slices) counts[s.id] = static_cast<int>(s.contours.size());
   for (const auto& [id, n] : counts)
-    if (previous_counts[id] != n) events.push_back({frame, id, event_kind(previous_counts[id], n), previous_counts[id], n});
+    if (previous_counts[id] != n) {
+      events.push_back({frame, id, event_kind(previous_counts[id], n), previous_counts[id], n});
+      unmatched.insert(id);
+    }
   for (const auto& [id, n] : previous_counts)
     if (n > 0 && !counts.count(id)) events.push_back({frame, id, "vanish", n, 0});
-  // Slices whose contour count changes into or out of this frame.
-  std::set<int> changing;
-  for (const auto& [id, n] : counts)
-    if (previous_counts[id] != n) changing.insert(id);
   if (static_cast<std::size_t>(frame) + 1 < seq.frames.size()) {
     std::map<int, int> next;
     for (const Slice& s : seq.frames[static_cast<std::size_t>(frame) + 1].slices) next[s.id] = static_cast<int>(s.contours.size());
     for (const auto& [id, n] : counts)
-      if (next[id] != n) changing.insert(id);
+      if (next[id] != n) unmatched.insert(id);
   }
   previous_counts = counts;
 
-  std::set<int> unmatched = changing;  // slices with a chain left without partner, or changing (topology changes)
   for (const auto& [id, idx] : by_slice) {
     const Slice* ts = find_slice(target, id);
     if (!ts) {
@@ -275,18 +276,6 @@ void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const s
       ++fr.matched;
     }
   }
-  // Next to a slice whose contours split, merge, appear or vanish, the surface must move through the
-  // slices to follow: chains there do not slide (held in their planes, they crowd the triangles).
-  if (unmatched.empty()) return;
-  std::vector<std::pair<double, int>> order;
-  for (const auto& [id, idx] : by_slice) order.push_back({dot(chains[idx.front()].plane.origin, seq.normal), id});
-  std::sort(order.begin(), order.end());
-  held.insert(unmatched.begin(), unmatched.end());
-  for (std::size_t k = 0; k < order.size(); ++k)
-    if (unmatched.count(order[k].second)) {
-      if (k > 0) held.insert(order[k - 1].second);
-      if (k + 1 < order.size()) held.insert(order[k + 1].second);
-    }
 }
 
 // Area of the triangles of (pos, tris) per band between consecutive slice heights (band 0 below the
@@ -320,6 +309,19 @@ struct Bands {
   std::vector<double> areas;    // band_areas of frame 0's mesh
   std::map<int, double> perimeters;  // slice_perimeters of frame 0
 };
+
+// Next to a slice whose contours split, merge, appear or vanish (`unmatched`), the surface must move
+// through the slices to follow: chains there and on the slices beside it are held (in their planes,
+// they would crowd the triangles).
+void hold_next_to(const Bands& b0, const std::set<int>& unmatched, std::set<int>& held) {
+  held.insert(unmatched.begin(), unmatched.end());
+  const std::vector<int>& ids = b0.slice_ids;
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    if (unmatched.count(ids[k])) {
+      if (k > 0) held.insert(ids[k - 1]);
+      if (k + 1 < ids.size()) held.insert(ids[k + 1]);
+    }
+}
 
 // A chain sliding in its plane fixes how many vertices the bands beside it hold. Where a band changed
 // shape unevenly since frame 0 (its height, from its area on the frame's own surface over its width,
@@ -363,20 +365,8 @@ struct FrameQuality {
 };
 
 FrameQuality frame_quality(const std::vector<Vec3>& x, const std::vector<Triangle>& tris, std::size_t crossings) {
-  FrameQuality q{crossings, 180, 0};
-  std::size_t good = 0;
-  for (const Triangle& t : tris) {
-    const Vec3 p[3] = {x[t[0]], x[t[1]], x[t[2]]};
-    for (std::size_t k = 0; k < 3; ++k) {
-      const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-      const double nu = norm(u), nv = norm(v);
-      const double a = nu > 0 && nv > 0 ? std::acos(std::clamp(dot(u, v) / (nu * nv), -1.0, 1.0)) * 180.0 / 3.14159265358979323846 : 0.0;
-      q.worst = std::min(q.worst, a);
-      good += a >= 40 && a <= 80;
-    }
-  }
-  q.good = tris.empty() ? 1.0 : static_cast<double>(good) / (3.0 * static_cast<double>(tris.size()));
-  return q;
+  const AngleQuality q = angle_quality(TriangleMesh{x, tris});
+  return {crossings, q.min_angle_deg, q.pct_40_80 / 100.0};
 }
 
 // a better than b: fewer crossings; then above the angle floor; then the larger smallest angle below it,
@@ -566,11 +556,13 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     MorphFrameReport& fr = rep.frames[t];
     std::vector<ChainTarget> matched;
     std::vector<std::vector<Vec3>> lines;  // the matched contours of frame t
-    std::set<int> held;                    // slices whose chains do not slide in the relaxation
-    match_chains(seq, chains, x, static_cast<int>(t), opt, pin_spacing, slide_spacing, matched, lines, held, fr,
+    std::set<int> unmatched, held;         // held: slices whose chains do not slide in the relaxation
+    match_chains(seq, chains, x, static_cast<int>(t), opt, pin_spacing, slide_spacing, matched, lines, unmatched, fr,
                  rep.events, counts);
-    if (project && slide_spacing > 0)
+    if (project && slide_spacing > 0) {
+      hold_next_to(bands, unmatched, held);
       hold_uneven_bands(bands, surfaces[t], seq.frames[t], seq.normal, opt.slide_anisotropy, held);
+    }
     std::vector<std::pair<std::uint32_t, Vec3>> pins;
     for (const ChainTarget& m : matched)
       if (m.pinned) pins.push_back({m.vertex, m.position});
@@ -666,40 +658,10 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       }
       fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
       fr.projection_max = mx;
-      // A frame that ends with a triangle angle below retry_min_angle_deg, fewer than retry_min_good_share
-      // of its angles in 40–80° or crossing triangles (a band crowded as a branch point nears a slice or a
-      // contour shrinks fast; sliding chains hold the bands between them to frame 0's vertex count) is
-      // done again with no vertex put on a contour and retry_sweep_factor times the sweeps; the better of
-      // the two is kept.
-      const std::vector<Vec3> x_start = x, normals_start = normals;
-      const std::vector<std::int32_t> hints_start = proj.hints;
-      std::vector<Vec3> first;
-      MorphFrameReport first_report;
-      FrameQuality first_quality;
-      for (int attempt = 0; attempt < 2; ++attempt) {
-        if (attempt == 1) {
-          first = x;
-          first_report = fr;
-          x = x_start;
-          normals = normals_start;
-          proj.hints = hints_start;
-          std::fill(sliding.begin(), sliding.end(), 0);
-          std::fill(on_contour.begin(), on_contour.end(), 0);
-          std::fill(slide_hint.begin(), slide_hint.end(), -1);
-          fr.sliding = 0;
-          fr.redone = true;
-        }
-        const int sweeps = opt.relax_sweeps * (attempt == 0 ? 1 : std::max(1, opt.retry_sweep_factor));
-        // Chain vertices of matched contours go onto their contour (the closest point) and slide along
-        // it from here on: the mesh then passes through the frame's contours, not only near them.
-        for (std::size_t i = 0; i < nv; ++i)
-          if (sliding[i]) {
-            x[i] = slide(i, x[i]);
-            on_contour[i] = 1;
-            ++fr.sliding;
-          }
-        // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
-        const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
+      // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
+      //    Vertices on a contour move along it (they were put there before).
+      const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
+      auto relax = [&](int sweeps) {
         for (int r = 0; r < opt.relax_iterations; ++r) {
           std::vector<Vec3> vel(nv, Vec3{});
           std::vector<Vec3> moved = x;
@@ -746,7 +708,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
                 d -= dot(d, n) * n;
                 vel[i] = beta * vel[i] + opt.relax_step * d;
                 moved[i] = xi + vel[i];
-                if (sliding[i]) {
+                if (on_contour[i]) {
                   moved[i] = slide(i, moved[i]);
                   vel[i] = moved[i] - xi;
                 }
@@ -756,8 +718,41 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
           }
           std::vector<Vec3> q = proj.project(x, &normals);
           for (std::size_t i = 0; i < nv; ++i)
-            if (!pinned[i] && !sliding[i]) x[i] = q[i];
+            if (!pinned[i] && !on_contour[i]) x[i] = q[i];
         }
+      };
+      // A frame that ends with a triangle angle below retry_min_angle_deg, fewer than retry_min_good_share
+      // of its angles in 40–80° or crossing triangles (a band crowded as a branch point nears a slice or a
+      // contour shrinks fast; sliding chains hold the bands between them to frame 0's vertex count) is
+      // done again with no vertex put on a contour and retry_sweep_factor times the sweeps; the better of
+      // the two is kept.
+      const std::vector<Vec3> x_start = x, normals_start = normals;
+      const std::vector<std::int32_t> hints_start = proj.hints;
+      std::vector<Vec3> first;
+      MorphFrameReport first_report;
+      FrameQuality first_quality;
+      for (int attempt = 0; attempt < 2; ++attempt) {
+        if (attempt == 1) {
+          first = x;
+          first_report = fr;
+          x = x_start;
+          normals = normals_start;
+          proj.hints = hints_start;
+          std::fill(sliding.begin(), sliding.end(), 0);
+          std::fill(on_contour.begin(), on_contour.end(), 0);
+          std::fill(slide_hint.begin(), slide_hint.end(), -1);
+          fr.sliding = 0;
+          fr.redone = true;
+        }
+        // Chain vertices of matched contours go onto their contour (the closest point) and slide along
+        // it from here on: the mesh then passes through the frame's contours, not only near them.
+        for (std::size_t i = 0; i < nv; ++i)
+          if (sliding[i]) {
+            x[i] = slide(i, x[i]);
+            on_contour[i] = 1;
+            ++fr.sliding;
+          }
+        relax(opt.relax_sweeps * (attempt == 0 ? 1 : std::max(1, opt.retry_sweep_factor)));
         // 3b. Chain vertices of matched contours onto their contour (the closest point), where their ring
         //     keeps its smallest angle (or 32°): the mesh then passes through the frame's contours, not only
         //     near them. They slide along it in the repair below. Elsewhere (a contour that shrank, crowding
