@@ -111,6 +111,7 @@ int run_reconstruct(const ReconstructArgs& a) {
                         {"rbf_sources", mf.sources},
                         {"angle_repair_moves", mf.angle_repairs},
                         {"sliding_contour_vertices", mf.sliding},
+                        {"plane_snapped_vertices", mf.plane_snapped},
                         {"redone", mf.redone},
                         {"intersecting_pairs_after_untangling", mf.intersecting_pairs},
                         {"projection_mean_mm", mf.projection_mean},

@@ -606,8 +606,22 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     std::vector<char> on_contour(nv, 0);
     // Whether moving vertex i to p keeps its ring: no triangle turned by more than 60°, and the ring's
     // smallest angle at least as large as before or as the repair's target.
-    auto harmless = [&](std::size_t i, Vec3 p, double floor_deg) {
+    // With max_good_loss >= 0, the ring may also lose at most that many angles in 40–80°.
+    auto good_angles = [](Vec3 a, Vec3 b, Vec3 c) {
+      int n = 0;
+      const Vec3 p[3] = {a, b, c};
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+        const double nu = norm(u), nv2 = norm(v);
+        if (nu <= 0 || nv2 <= 0) continue;
+        const double cosa = dot(u, v) / (nu * nv2);  // 40° ≤ angle ≤ 80°
+        n += cosa <= 0.766044443118978 && cosa >= 0.17364817766693033;
+      }
+      return n;
+    };
+    auto harmless = [&](std::size_t i, Vec3 p, double floor_deg, int max_good_loss = -1) {
       double before = 180, after = 180;
+      int good_before = 0, good_after = 0;
       for (std::uint32_t f : incident[i]) {
         const Triangle& tri = frame0.triangles[f];
         Vec3 c[3];
@@ -616,8 +630,12 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         if (dot(n0, n1) <= 0.5 * norm(n0) * norm(n1)) return false;
         before = std::min(before, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
         after = std::min(after, min_angle_deg(c[0], c[1], c[2]));
+        if (max_good_loss >= 0) {
+          good_before += good_angles(x[tri[0]], x[tri[1]], x[tri[2]]);
+          good_after += good_angles(c[0], c[1], c[2]);
+        }
       }
-      return after >= std::min(before, floor_deg);
+      return after >= std::min(before, floor_deg) && (max_good_loss < 0 || good_after >= good_before - max_good_loss);
     };
 
     if (project) {
@@ -728,6 +746,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       // the two is kept.
       const std::vector<Vec3> x_start = x, normals_start = normals;
       const std::vector<std::int32_t> hints_start = proj.hints;
+      const std::vector<std::int32_t> slide_line_start = slide_line;
       std::vector<Vec3> first;
       MorphFrameReport first_report;
       FrameQuality first_quality;
@@ -741,6 +760,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
           std::fill(sliding.begin(), sliding.end(), 0);
           std::fill(on_contour.begin(), on_contour.end(), 0);
           std::fill(slide_hint.begin(), slide_hint.end(), -1);
+          slide_line = slide_line_start;
+          fr.plane_snapped = 0;
           fr.sliding = 0;
           fr.redone = true;
         }
@@ -768,6 +789,49 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
             on_contour[i] = 1;
             ++fr.sliding;
           }
+        // 3b'. Where a chain stayed off its contour (held slices: vertices flowed through the plane), the
+        //      mesh vertex nearest the plane on each edge that crosses it goes onto the contour instead, if
+        //      harmless: the section then passes through the contour at those vertices, not across a crease.
+        if (opt.plane_snap && !lines.empty()) {
+          std::vector<double> line_h(lines.size());
+          for (std::size_t l = 0; l < lines.size(); ++l) line_h[l] = dot(lines[l].front(), seq.normal);
+          std::vector<std::int32_t> best_line(nv, -1);
+          std::vector<double> best_gap(nv, std::numeric_limits<double>::infinity());
+          for (std::size_t i = 0; i < nv; ++i) {
+            const double hi = dot(x[i], seq.normal);
+            for (std::size_t r = ring_start[i]; r < ring_start[i + 1]; ++r) {
+              const std::uint32_t j = ring_index[r];
+              if (j <= i) continue;
+              const double hj = dot(x[j], seq.normal);
+              for (std::size_t l = 0; l < lines.size(); ++l) {
+                const double di = hi - line_h[l], dj = hj - line_h[l];
+                if ((di > 0) == (dj > 0) && di != 0 && dj != 0) continue;
+                const std::size_t v = std::abs(di) <= std::abs(dj) ? i : j;
+                const double gap = std::abs(v == i ? di : dj);
+                // Which contour of the slice: the one nearest the crossing.
+                const double s = di == dj ? 0.5 : di / (di - dj);
+                const Vec3 c = x[i] + s * (x[j] - x[i]);
+                std::int32_t hint = -1;
+                if (distance(closest_on_loop(lines[l], c, hint), c) > 2.0 * median_edge) continue;
+                if (gap < best_gap[v]) {
+                  best_gap[v] = gap;
+                  best_line[v] = static_cast<std::int32_t>(l);
+                }
+              }
+            }
+          }
+          for (std::size_t i = 0; i < nv; ++i) {
+            if (best_line[i] < 0 || on_contour[i] || pinned[i]) continue;
+            std::int32_t hint = -1;
+            const Vec3 q = closest_on_loop(lines[static_cast<std::size_t>(best_line[i])], x[i], hint);
+            if (!harmless(i, q, opt.angle_repair.target_deg, attempt == 0 ? opt.plane_snap_good_loss : 0)) continue;
+            x[i] = q;
+            slide_line[i] = best_line[i];
+            slide_hint[i] = hint;
+            on_contour[i] = 1;
+            ++fr.plane_snapped;
+          }
+        }
         // 3c. Where the contour turns by more than corner_angle_deg, the nearest vertex on it moves onto
         //     the corner exactly and stays there (else the edges beside it cut the corner).
         std::vector<char> fixed = pinned;
@@ -783,13 +847,21 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
               const Vec3 a = L[k] - L[(k + n - 1) % n], b = L[(k + 1) % n] - L[k];
               const double la = norm(a), lb = norm(b);
               if (la <= 0 || lb <= 0 || dot(a, b) > cos_corner * la * lb) continue;  // turns less
-              std::uint32_t best = on_line[l].front();
-              for (std::uint32_t v : on_line[l])
-                if (distance(x[v], L[k]) < distance(x[best], L[k])) best = v;
-              // Up to two edges away; its ring may drop to 20° (the repair below works around it).
-              if (fixed[best] || distance(x[best], L[k]) > 2.0 * median_edge || !harmless(best, L[k], 20.0)) continue;
-              x[best] = L[k];
-              fixed[best] = 1;
+              // The nearest vertices up to two edges away, nearest first; the first whose ring keeps 20° (the
+              // repair below works around it) moves.
+              std::vector<std::pair<double, std::uint32_t>> near;
+              for (std::uint32_t v : on_line[l]) {
+                const double d = distance(x[v], L[k]);
+                if (d <= 2.0 * median_edge) near.push_back({d, v});
+              }
+              std::sort(near.begin(), near.end());
+              for (std::size_t c = 0; c < std::min<std::size_t>(near.size(), opt.corner_candidates); ++c) {
+                const std::uint32_t v = near[c].second;
+                if (fixed[v] || !harmless(v, L[k], 20.0)) continue;
+                x[v] = L[k];
+                fixed[v] = 1;
+                break;
+              }
             }
           }
         }

@@ -80,6 +80,7 @@ TEST(Reconstruct4D, ContourVerticesSlideAlongLaterContours) {
   const MeshSequence a = reconstruct_4d(p.contours, {}, &with);
   Reconstruct4DOptions o;
   o.morph.slide_spacing = 0;
+  o.morph.plane_snap = false;
   const MeshSequence b = reconstruct_4d(p.contours, o, &without);
   ASSERT_EQ(a.positions.size(), b.positions.size());
   int slid = 0;
@@ -96,6 +97,32 @@ TEST(Reconstruct4D, ContourVerticesSlideAlongLaterContours) {
     EXPECT_LT(ca.mean, 0.02) << "frame " << f;  // issue 4: ≤ 0.02 mm per frame
   }
   EXPECT_GT(slid, 0);
+}
+
+// Where chains do not slide (held slices; here sliding is off everywhere), the vertex nearest each
+// contour's plane on every crossing edge goes onto the contour (MorphOptions::plane_snap): closer to the
+// contours than without, and still a valid surface.
+TEST(Reconstruct4D, VerticesNearestThePlaneSnapOntoHeldContours) {
+  const Phantom p = small_ellipsoid();
+  Reconstruct4DOptions on, off;
+  on.morph.slide_spacing = off.morph.slide_spacing = 0;
+  off.morph.plane_snap = false;
+  Reconstruct4DReport with, without;
+  const MeshSequence a = reconstruct_4d(p.contours, on, &with);
+  const MeshSequence b = reconstruct_4d(p.contours, off, &without);
+  double sum_a = 0, sum_b = 0;
+  int snapped = 0;
+  for (std::size_t f = 1; f < a.positions.size(); ++f) {
+    EXPECT_EQ(without.morph.frames[f].plane_snapped, 0) << f;
+    snapped += with.morph.frames[f].plane_snapped;
+    const TriangleMesh mesh = a.frame(f);
+    const TopologyReport t = check_topology(mesh, {});
+    EXPECT_TRUE(t.faults.empty()) << "frame " << f << ": " << (t.faults.empty() ? "" : t.faults.front());
+    sum_a += contour_conformity(mesh, p.contours.frames[f]).mean;
+    sum_b += contour_conformity(b.frame(f), p.contours.frames[f]).mean;
+  }
+  EXPECT_GT(snapped, 0);
+  EXPECT_LT(sum_a, 0.8 * sum_b);
 }
 
 std::string slurp(const fs::path& p) {
@@ -146,6 +173,7 @@ TEST(Reconstruct4D, ReportListsTheMorphFiguresPerFrame) {
     EXPECT_TRUE(frames[f].at("surface").at("self_intersects").is_null()) << f;
     EXPECT_TRUE(frames[f].at("redone").is_boolean()) << f;
     slid += frames[f].at("sliding_contour_vertices").get<long>();
+    EXPECT_GE(frames[f].at("plane_snapped_vertices").get<long>(), 0) << f;
   }
   EXPECT_GT(slid, 0);
   fs::remove_all(dir);

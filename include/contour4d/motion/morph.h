@@ -39,6 +39,11 @@ struct MorphOptions {
   double slide_anisotropy = 1.1;   //!< chains beside a band whose height scaled more than this × its width (or its
                                    //!< width more than this × its height) since frame 0 do not slide: the band's
                                    //!< vertices must move through their planes to keep their triangles
+  bool plane_snap = true;          //!< RbfProject: after the relaxation, on each edge crossing a matched contour's plane, the
+                                   //!< endpoint nearest the plane goes onto the contour where its ring keeps its smallest
+                                   //!< angle (or angle_repair.target_deg); mostly for slices whose chains were held
+  int plane_snap_good_loss = -1;   //!< plane_snap: how many of the ring's angles in 40–80° a snap may lose (-1: any); 0 in a retry
+  std::size_t corner_candidates = 1;  //!< corner_angle_deg: how many of the nearest vertices on the contour are tried
   double corner_angle_deg = 30;    //!< a matched contour turning more than this at one of its points gets the nearest
                                    //!< vertex on it exactly there (as frame 0's resampled contours keep such corners)
   double retry_min_angle_deg = 25;  //!< a frame left with a triangle angle below this, fewer than retry_min_good_share
@@ -94,6 +99,7 @@ struct MorphFrameReport {
   std::size_t intersecting_pairs = 0;  //!< triangle pairs still intersecting after untangling (RbfProject)
   std::size_t angle_repairs = 0;  //!< vertex moves of the small-angle repair
   std::size_t sliding = 0;     //!< contour-chain vertices kept on their contour (MorphOptions::slide_spacing)
+  int plane_snapped = 0;       //!< vertices put on a contour by MorphOptions::plane_snap
   bool redone = false;         //!< the frame was done again (MorphOptions::retry_min_angle_deg)
   double projection_max = 0;   //!< max distance (mm) from the frame's surface before the final projection
   double projection_mean = 0;  //!< mean of the same
