@@ -855,7 +855,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
                 if (d <= 2.0 * median_edge) near.push_back({d, v});
               }
               std::sort(near.begin(), near.end());
-              for (std::size_t c = 0; c < std::min<std::size_t>(near.size(), opt.corner_candidates); ++c) {
+              const std::size_t tries = attempt == 0 ? opt.corner_candidates : 1;  // the retry: the nearest only
+              for (std::size_t c = 0; c < std::min(near.size(), tries); ++c) {
                 const std::uint32_t v = near[c].second;
                 if (fixed[v] || !harmless(v, L[k], 20.0)) continue;
                 x[v] = L[k];
