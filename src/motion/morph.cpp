@@ -679,8 +679,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
       //    Vertices on a contour move along it (they were put there before).
       const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
-      auto relax = [&](int sweeps) {
-        for (int r = 0; r < opt.relax_iterations; ++r) {
+      auto relax = [&](int rounds, int sweeps) {
+        for (int r = 0; r < rounds; ++r) {
           std::vector<Vec3> vel(nv, Vec3{});
           std::vector<Vec3> moved = x;
           const double beta = opt.relax_momentum;
@@ -747,13 +747,13 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       const std::vector<Vec3> x_start = x, normals_start = normals;
       const std::vector<std::int32_t> hints_start = proj.hints;
       const std::vector<std::int32_t> slide_line_start = slide_line;
-      std::vector<Vec3> first;
-      MorphFrameReport first_report;
-      FrameQuality first_quality;
-      for (int attempt = 0; attempt < 2; ++attempt) {
-        if (attempt == 1) {
-          first = x;
-          first_report = fr;
+      std::vector<Vec3> best;  // the best try so far
+      MorphFrameReport best_report;
+      FrameQuality best_quality;
+      int sweep_factor = 1;
+      for (int attempt = 0; attempt <= std::max(0, opt.retry_attempts); ++attempt) {
+        if (attempt >= 1) {
+          sweep_factor = attempt == 1 ? std::max(1, opt.retry_sweep_factor) : 2 * sweep_factor;
           x = x_start;
           normals = normals_start;
           proj.hints = hints_start;
@@ -773,7 +773,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
             on_contour[i] = 1;
             ++fr.sliding;
           }
-        relax(opt.relax_sweeps * (attempt == 0 ? 1 : std::max(1, opt.retry_sweep_factor)));
+        relax(opt.relax_iterations, opt.relax_sweeps * sweep_factor);
         // 3b. Chain vertices of matched contours onto their contour (the closest point), where their ring
         //     keeps its smallest angle (or 32°): the mesh then passes through the frame's contours, not only
         //     near them. They slide along it in the repair below. Elsewhere (a contour that shrank, crowding
@@ -792,7 +792,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         // 3b'. Where a chain stayed off its contour (held slices: vertices flowed through the plane), the
         //      mesh vertex nearest the plane on each edge that crosses it goes onto the contour instead, if
         //      harmless: the section then passes through the contour at those vertices, not across a crease.
-        if (opt.plane_snap && !lines.empty()) {
+        auto plane_snap = [&]() {
           std::vector<double> line_h(lines.size());
           for (std::size_t l = 0; l < lines.size(); ++l) line_h[l] = dot(lines[l].front(), seq.normal);
           std::vector<std::int32_t> best_line(nv, -1);
@@ -830,6 +830,15 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
             slide_hint[i] = hint;
             on_contour[i] = 1;
             ++fr.plane_snapped;
+          }
+        };
+        if (opt.plane_snap && !lines.empty()) {
+          plane_snap();
+          // The triangles around the snapped vertices relax again (those slide along their contours), which
+          // brings more vertices near the planes for another snap.
+          for (int k = 0; k < opt.plane_snap_relax_rounds; ++k) {
+            relax(1, opt.relax_sweeps);
+            plane_snap();
           }
         }
         // 3c. Where the contour turns by more than corner_angle_deg, the nearest vertex on it moves onto
@@ -876,14 +885,17 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         if (opt.angle_repair.passes > 0)
           fr.angle_repairs = repair_small_angles(x, frame0.triangles, fixed, snap_to, opt.angle_repair);
         const FrameQuality q = frame_quality(x, frame0.triangles, fr.intersecting_pairs);
-        if (attempt == 0) {
-          first_quality = q;
-          if (q.crossings == 0 && q.worst >= opt.retry_min_angle_deg && q.good >= opt.retry_min_good_share) break;
-        } else if (!better(q, first_quality, opt.retry_min_angle_deg)) {
-          x = std::move(first);  // the first was better after all
-          fr = first_report;
-          fr.redone = true;
+        if (attempt == 0 || better(q, best_quality, opt.retry_min_angle_deg)) {
+          best = x;
+          best_report = fr;
+          best_quality = q;
         }
+        if (q.crossings == 0 && q.worst >= opt.retry_min_angle_deg && q.good >= opt.retry_min_good_share) break;
+      }
+      if (fr.redone) {  // the best of the tries (report: redone, whichever it was)
+        x = std::move(best);
+        fr = best_report;
+        fr.redone = true;
       }
     }
     for (const Vec3& p : x)

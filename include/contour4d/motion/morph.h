@@ -43,6 +43,8 @@ struct MorphOptions {
                                    //!< endpoint nearest the plane goes onto the contour where its ring keeps its smallest
                                    //!< angle (or angle_repair.target_deg); mostly for slices whose chains were held
   int plane_snap_good_loss = -1;   //!< plane_snap: how many of the ring's angles in 40–80° a snap may lose (-1: any); 0 in a retry
+  int plane_snap_relax_rounds = 1;  //!< plane_snap: relaxation rounds (relax_sweeps each) after the snap, each followed
+                                    //!< by another snap (every try)
   std::size_t corner_candidates = 3;  //!< corner_angle_deg: how many of the nearest vertices on the contour are tried,
                                       //!< nearest first (1 in a retry). biv-me frame 5: conformity max 0.60 → 0.18 mm
   double corner_angle_deg = 30;    //!< a matched contour turning more than this at one of its points gets the nearest
@@ -51,6 +53,8 @@ struct MorphOptions {
                                      //!< of its angles in 40–80° or crossing triangles is done again with no chain vertex
                                      //!< put on a contour and retry_sweep_factor × the sweeps; the better is kept
   double retry_min_good_share = 0.85;  //!< see retry_min_angle_deg
+  int retry_attempts = 1;          //!< tries after the first, each with twice the sweeps of the one before (the first
+                                   //!< retry: retry_sweep_factor ×), until one meets the criteria; the best is kept
   int retry_sweep_factor = 8;      //!< see retry_min_angle_deg (biv-me frame 6: 61 → 0 triangles below 25°,
                                    //!< 78 → 85 % of angles in 40–80°; 6 gave 84.8 % with the plane snap)
   int projection_iterations = 3;   //!< regularised projection rounds (RbfProject); the relaxation re-projects
