@@ -357,6 +357,43 @@ void hold_uneven_bands(const Bands& b0, const TriangleMesh& surface, const Frame
   }
 }
 
+// MorphOptions::plane_snap's candidates: on every mesh edge (rings in CSR form) that crosses the plane of
+// one of `lines` within `reach` of that line, the endpoint nearer the plane. Per vertex: the line of its
+// nearest such crossing, -1 for none.
+std::vector<std::int32_t> nearest_to_planes(const std::vector<Vec3>& x, const std::vector<std::size_t>& ring_start,
+                                            const std::vector<std::uint32_t>& ring_index,
+                                            const std::vector<std::vector<Vec3>>& lines, Vec3 normal, double reach) {
+  const std::size_t nv = x.size();
+  std::vector<double> line_h(lines.size());
+  for (std::size_t l = 0; l < lines.size(); ++l) line_h[l] = dot(lines[l].front(), normal);
+  std::vector<std::int32_t> best_line(nv, -1);
+  std::vector<double> best_gap(nv, std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < nv; ++i) {
+    const double hi = dot(x[i], normal);
+    for (std::size_t r = ring_start[i]; r < ring_start[i + 1]; ++r) {
+      const std::uint32_t j = ring_index[r];
+      if (j <= i) continue;
+      const double hj = dot(x[j], normal);
+      for (std::size_t l = 0; l < lines.size(); ++l) {
+        const double di = hi - line_h[l], dj = hj - line_h[l];
+        if ((di > 0) == (dj > 0) && di != 0 && dj != 0) continue;
+        const std::size_t v = std::abs(di) <= std::abs(dj) ? i : j;
+        const double gap = std::abs(v == i ? di : dj);
+        // Which contour of the slice: the one nearest the crossing.
+        const double s = di == dj ? 0.5 : di / (di - dj);
+        const Vec3 c = x[i] + s * (x[j] - x[i]);
+        std::int32_t hint = -1;
+        if (distance(closest_on_loop(lines[l], c, hint), c) > reach) continue;
+        if (gap < best_gap[v]) {
+          best_gap[v] = gap;
+          best_line[v] = static_cast<std::int32_t>(l);
+        }
+      }
+    }
+  }
+  return best_line;
+}
+
 // What decides whether a frame is redone, and which of two tries is kept.
 struct FrameQuality {
   std::size_t crossings = 0;  // intersecting triangle pairs left
@@ -793,33 +830,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         //      mesh vertex nearest the plane on each edge that crosses it goes onto the contour instead, if
         //      harmless: the section then passes through the contour at those vertices, not across a crease.
         auto plane_snap = [&]() {
-          std::vector<double> line_h(lines.size());
-          for (std::size_t l = 0; l < lines.size(); ++l) line_h[l] = dot(lines[l].front(), seq.normal);
-          std::vector<std::int32_t> best_line(nv, -1);
-          std::vector<double> best_gap(nv, std::numeric_limits<double>::infinity());
-          for (std::size_t i = 0; i < nv; ++i) {
-            const double hi = dot(x[i], seq.normal);
-            for (std::size_t r = ring_start[i]; r < ring_start[i + 1]; ++r) {
-              const std::uint32_t j = ring_index[r];
-              if (j <= i) continue;
-              const double hj = dot(x[j], seq.normal);
-              for (std::size_t l = 0; l < lines.size(); ++l) {
-                const double di = hi - line_h[l], dj = hj - line_h[l];
-                if ((di > 0) == (dj > 0) && di != 0 && dj != 0) continue;
-                const std::size_t v = std::abs(di) <= std::abs(dj) ? i : j;
-                const double gap = std::abs(v == i ? di : dj);
-                // Which contour of the slice: the one nearest the crossing.
-                const double s = di == dj ? 0.5 : di / (di - dj);
-                const Vec3 c = x[i] + s * (x[j] - x[i]);
-                std::int32_t hint = -1;
-                if (distance(closest_on_loop(lines[l], c, hint), c) > 2.0 * median_edge) continue;
-                if (gap < best_gap[v]) {
-                  best_gap[v] = gap;
-                  best_line[v] = static_cast<std::int32_t>(l);
-                }
-              }
-            }
-          }
+          const std::vector<std::int32_t> best_line =
+              nearest_to_planes(x, ring_start, ring_index, lines, seq.normal, 2.0 * median_edge);
           for (std::size_t i = 0; i < nv; ++i) {
             if (best_line[i] < 0 || on_contour[i] || pinned[i]) continue;
             std::int32_t hint = -1;
