@@ -779,8 +779,9 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       // A frame that ends with a triangle angle below retry_min_angle_deg, fewer than retry_min_good_share
       // of its angles in 40–80° or crossing triangles (a band crowded as a branch point nears a slice or a
       // contour shrinks fast; sliding chains hold the bands between them to frame 0's vertex count) is
-      // done again with no vertex put on a contour and retry_sweep_factor times the sweeps; the better of
-      // the two is kept.
+      // done again with no chain vertex put on a contour (only plane snaps that lose no angle in 40–80°)
+      // and retry_sweep_factor times the sweeps, retry_attempts times (each with twice the sweeps of the one
+      // before) until a try meets the criteria; the best try is kept.
       const std::vector<Vec3> x_start = x, normals_start = normals;
       const std::vector<std::int32_t> hints_start = proj.hints;
       const std::vector<std::int32_t> slide_line_start = slide_line;
