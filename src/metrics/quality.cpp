@@ -13,6 +13,17 @@ namespace {
 double angle_deg(Vec3 a, Vec3 b) { return std::atan2(norm(cross(a, b)), dot(a, b)) * 180.0 / std::numbers::pi; }
 }  // namespace
 
+int angles_40_80(Vec3 a, Vec3 b, Vec3 c) {
+  const Vec3 p[3] = {a, b, c};
+  if (!(norm(cross(b - a, c - a)) > 0.0)) return 0;
+  int n = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = angle_deg(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+    n += d >= 40.0 && d < 80.0;
+  }
+  return n;
+}
+
 AngleQuality angle_quality(const TriangleMesh& mesh, const AngleQualityOptions& options) {
   AngleQuality q;
   std::size_t bins[4] = {0, 0, 0, 0};

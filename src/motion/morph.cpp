@@ -14,8 +14,8 @@
 #include "contour4d/motion/morph.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -644,18 +644,6 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     // Whether moving vertex i to p keeps its ring: no triangle turned by more than 60°, and the ring's
     // smallest angle at least as large as before or as the repair's target.
     // With max_good_loss >= 0, the ring may also lose at most that many angles in 40–80°.
-    auto good_angles = [](Vec3 a, Vec3 b, Vec3 c) {
-      int n = 0;
-      const Vec3 p[3] = {a, b, c};
-      for (int k = 0; k < 3; ++k) {
-        const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-        const double nu = norm(u), nv2 = norm(v);
-        if (nu <= 0 || nv2 <= 0) continue;
-        const double cosa = dot(u, v) / (nu * nv2);  // 40° ≤ angle ≤ 80°
-        n += cosa <= 0.766044443118978 && cosa >= 0.17364817766693033;
-      }
-      return n;
-    };
     auto harmless = [&](std::size_t i, Vec3 p, double floor_deg, int max_good_loss = -1) {
       double before = 180, after = 180;
       int good_before = 0, good_after = 0;
@@ -668,8 +656,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         before = std::min(before, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
         after = std::min(after, min_angle_deg(c[0], c[1], c[2]));
         if (max_good_loss >= 0) {
-          good_before += good_angles(x[tri[0]], x[tri[1]], x[tri[2]]);
-          good_after += good_angles(c[0], c[1], c[2]);
+          good_before += angles_40_80(x[tri[0]], x[tri[1]], x[tri[2]]);
+          good_after += angles_40_80(c[0], c[1], c[2]);
         }
       }
       return after >= std::min(before, floor_deg) && (max_good_loss < 0 || good_after >= good_before - max_good_loss);

@@ -179,6 +179,20 @@ TEST(Quality, IcosphereAnglesArePlausibleAndRigidInvariant) {
   EXPECT_NEAR(n.min_angle_deg, std::atan(0.1) * 180 / std::numbers::pi, 1e-9);
 }
 
+// angles_40_80 counts per triangle what angle_quality's pct_40_80 counts over the mesh.
+TEST(Quality, AnglesIn40To80PerTriangleAgreeWithTheMeshShare) {
+  const TriangleMesh m = rigid_motion(test::icosphere(10.0, 2));
+  std::size_t good = 0;
+  for (const Triangle& t : m.triangles)
+    good += static_cast<std::size_t>(angles_40_80(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+  EXPECT_NEAR(100.0 * static_cast<double>(good) / static_cast<double>(3 * m.triangles.size()), angle_quality(m).pct_40_80,
+              1e-9);
+  EXPECT_EQ(angles_40_80({0, 0, 0}, {1, 0, 0}, {0.5, 0.8660254037844386, 0}), 3);  // equilateral
+  EXPECT_EQ(angles_40_80({0, 0, 0}, {10, 0, 0}, {5, 0.5, 0}), 0);                  // needle: 5.7°, 5.7°, 168.6°
+  EXPECT_EQ(angles_40_80({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 2);                     // 90°, 45°, 45°
+  EXPECT_EQ(angles_40_80({0, 0, 0}, {1, 0, 0}, {2, 0, 0}), 0);                     // zero area
+}
+
 TEST(Conformity, ContoursThatAreTheMeshRingsAreAtZeroDistance) {
   const TriangleMesh m = test::ring_sphere(20.0, 9, 48);
   const Frame f = test::ring_contours(m, 9, 48);

@@ -173,7 +173,7 @@ TEST(Reconstruct4D, ReportListsTheMorphFiguresPerFrame) {
     EXPECT_TRUE(frames[f].at("surface").at("self_intersects").is_null()) << f;
     EXPECT_TRUE(frames[f].at("redone").is_boolean()) << f;
     slid += frames[f].at("sliding_contour_vertices").get<long>();
-    EXPECT_GE(frames[f].at("plane_snapped_vertices").get<long>(), 0) << f;
+    EXPECT_TRUE(frames[f].at("plane_snapped_vertices").is_number_integer()) << f;
   }
   EXPECT_GT(slid, 0);
   fs::remove_all(dir);

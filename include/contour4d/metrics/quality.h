@@ -33,4 +33,8 @@ struct AngleQuality {
 //! of range are skipped.
 AngleQuality angle_quality(const TriangleMesh& mesh, const AngleQualityOptions& options = {});
 
+//! How many of triangle (a, b, c)'s angles lie in [40°, 80°), measured as angle_quality measures them
+//! (0 for a zero-area triangle).
+int angles_40_80(Vec3 a, Vec3 b, Vec3 c);
+
 }  // namespace c4d
