@@ -26,6 +26,8 @@
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/metrics/quality.h"
+#include "contour4d/metrics/topology.h"
+#include "contour4d/motion/contour_fit.h"
 #include "contour4d/motion/contour_matching.h"
 #include "contour4d/motion/rbf.h"
 #include "contour4d/motion/section.h"
@@ -406,6 +408,108 @@ FrameQuality frame_quality(const std::vector<Vec3>& x, const std::vector<Triangl
   return {crossings, q.min_angle_deg, q.pct_40_80 / 100.0};
 }
 
+// Marks `mark` and `rings` rings of neighbours around the marked vertices (rings in CSR form).
+void grow(std::vector<char>& mark, const std::vector<std::size_t>& ring_start, const std::vector<std::uint32_t>& ring_index,
+          int rings) {
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> grown = mark;
+    for (std::size_t v = 0; v < mark.size(); ++v)
+      if (mark[v])
+        for (std::size_t r = ring_start[v]; r < ring_start[v + 1]; ++r) grown[ring_index[r]] = 1;
+    mark.swap(grown);
+  }
+}
+
+// Vertices of the triangles of `after` whose smallest angle fell below min(its angle in `before`,
+// floor_deg); true if any.
+bool mark_lost_angles(const std::vector<Vec3>& before, const std::vector<Vec3>& after, const std::vector<Triangle>& tris,
+                      double floor_deg, std::vector<char>& mark) {
+  bool any = false;
+  for (const Triangle& tri : tris) {
+    const double a = min_angle_deg(after[tri[0]], after[tri[1]], after[tri[2]]);
+    if (a >= floor_deg || a >= min_angle_deg(before[tri[0]], before[tri[1]], before[tri[2]]) - 1e-9) continue;
+    any = true;
+    for (std::uint32_t v : tri) mark[v] = 1;
+  }
+  return any;
+}
+
+// MorphOptions::contour_fit: fit_to_contours, kept only where it harms nothing. Where the fit leaves a
+// triangle's smallest angle below min(its angle before, floor_deg), the vertices there (and a ring)
+// move within the fitted surface to raise it (repair_small_angles) and then stay while the fit is done
+// again around them. Where triangles still lose angles, or more triangles cross than before, those
+// vertices and two rings around them stay at their place before the fit and it is done again. Up to
+// four rounds; if no fit is harmless, x stays as it was.
+ContourFitReport guarded_contour_fit(std::vector<Vec3>& x, const std::vector<Triangle>& tris,
+                                     const std::vector<std::vector<Vec3>>& contours, std::vector<char> fixed,
+                                     const std::vector<std::size_t>& ring_start, const std::vector<std::uint32_t>& ring_index,
+                                     double repair_below_deg, double floor_deg, const AngleRepairOptions& repair,
+                                     const ContourFitOptions& options) {
+  const std::size_t crossings_before = count_self_intersections(TriangleMesh{x, tris});
+  auto largest_distance = [&](const std::vector<Vec3>& positions) {
+    ContourFitOptions measure = options;
+    measure.iterations = 0;
+    std::vector<Vec3> probe = positions;
+    return fit_to_contours(probe, tris, contours, fixed, measure).max_before_mm;
+  };
+  ContourFitReport rep;
+  std::vector<Vec3> start = x;  // what each round fits from
+  std::vector<Vec3> harmless;   // the last harmless result
+  for (int round = 0; round < 4; ++round) {
+    std::vector<Vec3> fitted = start;
+    const ContourFitReport cf = fit_to_contours(fitted, tris, contours, fixed, options);
+    if (round == 0) rep.max_before_mm = rep.max_after_mm = cf.max_before_mm;
+    if (cf.moved == 0) break;
+    std::vector<char> bad(x.size(), 0), repaired(x.size(), 0);
+    if (mark_lost_angles(x, fitted, tris, repair_below_deg, bad)) {
+      // The repair is kept where the fit left an angle below floor_deg, or where it keeps the fit's
+      // largest contour distance (it moves vertices within the piecewise-flat surface, which can cut
+      // across a contour again).
+      std::vector<char> frozen(x.size(), 1), near = bad;
+      grow(near, ring_start, ring_index, 1);
+      for (std::size_t v = 0; v < x.size(); ++v)
+        if (near[v]) frozen[v] = fixed[v];
+      std::vector<Vec3> mended = fitted;
+      const SurfaceProjector surface(TriangleMesh{fitted, tris});
+      AngleRepairOptions local = repair;
+      local.target_deg = std::max(local.target_deg, repair_below_deg);
+      repair_small_angles(mended, tris, frozen, [&](std::uint32_t, Vec3 p) { return surface.closest(p); }, local);
+      std::vector<char> below_floor(x.size(), 0);
+      if (mark_lost_angles(x, fitted, tris, floor_deg, below_floor) ||
+          largest_distance(mended) <= cf.max_after_mm + options.tolerance_mm) {
+        fitted = std::move(mended);
+        repaired = std::move(near);
+      }
+      std::fill(bad.begin(), bad.end(), 0);
+      mark_lost_angles(x, fitted, tris, floor_deg, bad);
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    if (count_self_intersections(TriangleMesh{fitted, tris}, &pairs, tris.size()) > crossings_before)
+      for (const auto& [a, b] : pairs)
+        for (std::size_t f : {a, b})
+          for (std::uint32_t v : tris[f]) bad[v] = 1;
+    if (std::find(bad.begin(), bad.end(), 1) == bad.end()) {
+      harmless = fitted;
+      if (std::find(repaired.begin(), repaired.end(), 1) == repaired.end()) break;
+      start = std::move(fitted);  // fit again around the repaired vertices, which stay
+      for (std::size_t v = 0; v < x.size(); ++v)
+        if (repaired[v]) fixed[v] = 1;
+      continue;
+    }
+    grow(bad, ring_start, ring_index, 2);
+    for (std::size_t v = 0; v < x.size(); ++v)
+      if (bad[v]) {
+        fixed[v] = 1;
+        start[v] = x[v];
+      }
+  }
+  if (harmless.empty()) return rep;
+  for (std::size_t v = 0; v < x.size(); ++v) rep.moved += !(harmless[v] == x[v]);
+  x = std::move(harmless);
+  rep.max_after_mm = largest_distance(x);
+  return rep;
+}
+
 // a better than b: fewer crossings; then above the angle floor; then the larger smallest angle below it,
 // or the larger share of good angles above it.
 bool better(const FrameQuality& a, const FrameQuality& b, double floor_deg) {
@@ -585,10 +689,12 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   Eigen::SimplicialLDLT<SparseMatrix> solver;
   std::vector<char> factored_for;
   const double pin_weight = 1e8;
+  std::vector<Vec3> carry = frame0.positions;
 
   for (std::size_t t = 1; t < frames; ++t) {
-    const std::vector<Vec3>& prev = out.positions.back();
+    const std::vector<Vec3> prev = carry;  // the previous frame's mesh (before its contour fit)
     std::vector<Vec3> x = prev;
+    bool carried = false;
     if (opt.vertical_deformation) vertical_predeformation(seq, frame0.triangles, static_cast<int>(t), opt, x);
     MorphFrameReport& fr = rep.frames[t];
     std::vector<ChainTarget> matched;
@@ -898,11 +1004,26 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         fr = best_report;
         fr.redone = true;
       }
+      if (opt.contour_fit) {
+        // 5. The surface onto the frame's contours where it cuts across them (contour_fit.h). The next
+        //    frame starts from the mesh before this fit.
+        carry = x;
+        carried = true;
+        std::vector<std::vector<Vec3>> contours;
+        for (const Slice& s : seq.frames[t].slices)
+          for (const Contour& c : s.contours) contours.push_back(c.points);
+        const ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, contours, pinned, ring_start, ring_index,
+                                                        opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
+        fr.fit_moved = cf.moved;
+        fr.fit_max_before = cf.max_before_mm;
+        fr.fit_max_after = cf.max_after_mm;
+      }
     }
     for (const Vec3& p : x)
       if (!is_finite(p))
         throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
                           "the deformation produced non-finite positions");
+    if (!carried) carry = x;
     out.positions.push_back(std::move(x));
   }
   return out;

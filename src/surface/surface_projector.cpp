@@ -21,6 +21,7 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 struct SurfaceProjector::Impl {
   std::vector<K::Triangle_3> triangles;
   std::vector<Vec3> normals;
+  std::vector<std::uint32_t> source;  // index of each kept triangle in the mesh
   Tree tree;
 };
 
@@ -36,6 +37,7 @@ SurfaceProjector::SurfaceProjector(const TriangleMesh& s) : impl_(std::make_uniq
     if (!(norm(cross(b - a, c - a)) > 0.0)) continue;
     impl_->triangles.emplace_back(K::Point_3(a.x, a.y, a.z), K::Point_3(b.x, b.y, b.z), K::Point_3(c.x, c.y, c.z));
     impl_->normals.push_back(normalized(cross(b - a, c - a)));
+    impl_->source.push_back(static_cast<std::uint32_t>(&t - s.triangles.data()));
   }
   if (impl_->triangles.empty()) return;
   impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
@@ -45,6 +47,11 @@ SurfaceProjector::SurfaceProjector(const TriangleMesh& s) : impl_(std::make_uniq
 SurfaceProjector::~SurfaceProjector() = default;
 
 bool SurfaceProjector::empty() const { return impl_->triangles.empty(); }
+
+std::int32_t SurfaceProjector::mesh_triangle(std::int32_t hint) const {
+  if (hint < 0 || static_cast<std::size_t>(hint) >= impl_->source.size()) return -1;
+  return static_cast<std::int32_t>(impl_->source[static_cast<std::size_t>(hint)]);
+}
 
 Vec3 SurfaceProjector::closest(Vec3 p, Vec3* normal) const {
   std::int32_t none = -1;

@@ -24,6 +24,9 @@ class SurfaceProjector {
   //! The same, starting the search from triangle `*hint` (a previous answer for a nearby query;
   //! −1: none) and storing the triangle found there: a warm start for repeated projections.
   Vec3 closest(Vec3 p, Vec3* normal, std::int32_t* hint) const;
+  //! The index in the mesh's triangle list of the triangle a closest() call stored in its hint (−1 for
+  //! none).
+  std::int32_t mesh_triangle(std::int32_t hint) const;
 
  private:
   struct Impl;

@@ -1,0 +1,78 @@
+// Properties of the last fit of a morphed frame onto its contours (contour_fit.h; Lim et al. 2014,
+// "Mesh Conformity"): it brings the surface onto contours that lie off it, leaves a surface that
+// already passes through its contours alone, keeps fixed vertices, and commutes with rigid motion.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "contour4d/metrics/quality.h"
+#include "contour4d/motion/contour_fit.h"
+#include "contour4d/motion/section.h"
+#include "metrics_fixtures.h"
+
+namespace c4d {
+namespace {
+
+// A sphere of radius 20 mm (edges about 2 mm) and a circle of radius r in the plane z = h.
+TriangleMesh sphere() { return test::icosphere(20.0, 4); }
+
+std::vector<Vec3> circle(double r, double h, int n = 120) {
+  std::vector<Vec3> c;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * i / n;
+    c.push_back({r * std::cos(t), r * std::sin(t), h});
+  }
+  return c;
+}
+
+TEST(ContourFit, BringsTheSurfaceOntoAContourOffIt) {
+  TriangleMesh m = sphere();
+  // The exact sphere's section at z = 6 has radius sqrt(400 - 36) ≈ 19.08; the circle lies 0.3 mm outside.
+  const std::vector<std::vector<Vec3>> contours = {circle(std::sqrt(400.0 - 36.0) + 0.3, 6.0)};
+  const double before_min_angle = angle_quality(m).min_angle_deg;
+  const ContourFitReport r = fit_to_contours(m.positions, m.triangles, contours, {});
+  EXPECT_GT(r.max_before_mm, 0.3);
+  EXPECT_LT(r.max_after_mm, 0.1);
+  EXPECT_GT(r.moved, 0u);
+  // A smooth, small displacement: the triangles keep their shapes.
+  EXPECT_GT(angle_quality(m).min_angle_deg, before_min_angle - 5.0);
+}
+
+TEST(ContourFit, LeavesASurfaceThroughItsContoursAlone) {
+  TriangleMesh m = sphere();
+  Plane pl;
+  pl.origin = {0, 0, 3.7};
+  const std::vector<std::vector<Vec3>> contours = plane_section(m, pl);  // exactly on the mesh
+  ASSERT_FALSE(contours.empty());
+  const std::vector<Vec3> before = m.positions;
+  const ContourFitReport r = fit_to_contours(m.positions, m.triangles, contours, {});
+  EXPECT_LT(r.max_before_mm, 1e-9);
+  EXPECT_EQ(r.moved, 0u);
+  EXPECT_EQ(m.positions, before);
+}
+
+TEST(ContourFit, FixedVerticesStay) {
+  TriangleMesh m = sphere();
+  const std::vector<std::vector<Vec3>> contours = {circle(std::sqrt(400.0 - 36.0) + 0.3, 6.0)};
+  std::vector<char> fixed(m.positions.size(), 0);
+  for (std::size_t v = 0; v < fixed.size(); v += 2) fixed[v] = 1;
+  const std::vector<Vec3> before = m.positions;
+  fit_to_contours(m.positions, m.triangles, contours, fixed);
+  for (std::size_t v = 0; v < fixed.size(); v += 2) EXPECT_EQ(m.positions[v], before[v]) << v;
+}
+
+TEST(ContourFit, CommutesWithRigidMotion) {
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  auto rigid = [&](Vec3 p) { return Vec3{c * p.x - s * p.z + 12.5, p.y - 40.0, s * p.x + c * p.z + 3.25}; };
+  TriangleMesh a = sphere(), b = sphere();
+  std::vector<Vec3> ring = circle(std::sqrt(400.0 - 36.0) + 0.3, 6.0), moved_ring;
+  for (Vec3& p : b.positions) p = rigid(p);
+  for (const Vec3& p : ring) moved_ring.push_back(rigid(p));
+  fit_to_contours(a.positions, a.triangles, {ring}, {});
+  fit_to_contours(b.positions, b.triangles, {moved_ring}, {});
+  for (std::size_t v = 0; v < a.positions.size(); ++v) EXPECT_NEAR(distance(rigid(a.positions[v]), b.positions[v]), 0, 1e-6) << v;
+}
+
+}  // namespace
+}  // namespace c4d
