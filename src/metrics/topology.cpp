@@ -73,8 +73,11 @@ bool triangles_intersect(const TriangleMesh& m, const Triangle& s, const Triangl
 }
 }  // namespace
 
-std::size_t count_self_intersections(const TriangleMesh& mesh, std::vector<std::pair<std::size_t, std::size_t>>* pairs,
-                                     std::size_t max_pairs_listed) {
+namespace {
+
+// count_self_intersections and its restriction to flagged triangles (`only` null: all pairs).
+std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector<char>* only,
+                                     std::vector<std::pair<std::size_t, std::size_t>>* pairs, std::size_t max_pairs_listed) {
   const std::size_t nv = mesh.positions.size();
   std::vector<Box> boxes;
   boxes.reserve(mesh.triangles.size());
@@ -87,13 +90,20 @@ std::size_t count_self_intersections(const TriangleMesh& mesh, std::vector<std::
     if (CGAL::collinear(pa, pb, pc)) continue;  // reported as degenerate, not as an intersection
     boxes.emplace_back(pa.bbox() + pb.bbox() + pc.bbox(), i);
   }
-  std::vector<const Box*> ptrs;
-  ptrs.reserve(boxes.size());
-  for (const Box& b : boxes) ptrs.push_back(&b);
+  auto flagged = [&](std::size_t i) { return only == nullptr || (i < only->size() && (*only)[i]); };
+  std::vector<const Box*> all, some;
+  all.reserve(boxes.size());
+  for (const Box& b : boxes) {
+    all.push_back(&b);
+    if (only != nullptr && flagged(b.info())) some.push_back(&b);
+  }
   std::size_t count = 0;
   std::set<std::pair<std::size_t, std::size_t>> first;  // the smallest pairs: same list whatever the visiting order
   auto callback = [&](const Box* x, const Box* y) {
     const std::size_t i = std::min(x->info(), y->info()), j = std::max(x->info(), y->info());
+    if (i == j) return;
+    // A pair of two flagged triangles is met twice in the two-set search: counted from its smaller one.
+    if (only != nullptr && flagged(y->info()) && x->info() > y->info()) return;
     if (!triangles_intersect(mesh, mesh.triangles[i], mesh.triangles[j])) return;
     ++count;
     if (pairs != nullptr && max_pairs_listed > 0) {
@@ -101,9 +111,24 @@ std::size_t count_self_intersections(const TriangleMesh& mesh, std::vector<std::
       if (first.size() > max_pairs_listed) first.erase(std::prev(first.end()));
     }
   };
-  CGAL::box_self_intersection_d<CGAL::Sequential_tag>(ptrs.begin(), ptrs.end(), callback);
+  if (only == nullptr)
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), callback);
+  else if (!some.empty())
+    CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), callback);
   if (pairs != nullptr) pairs->assign(first.begin(), first.end());
   return count;
+}
+
+}  // namespace
+
+std::size_t count_self_intersections(const TriangleMesh& mesh, std::vector<std::pair<std::size_t, std::size_t>>* pairs,
+                                     std::size_t max_pairs_listed) {
+  return count_intersecting_pairs(mesh, nullptr, pairs, max_pairs_listed);
+}
+
+std::size_t count_self_intersections_of(const TriangleMesh& mesh, const std::vector<char>& only,
+                                        std::vector<std::pair<std::size_t, std::size_t>>* pairs, std::size_t max_pairs_listed) {
+  return count_intersecting_pairs(mesh, &only, pairs, max_pairs_listed);
 }
 
 TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& options) {

@@ -38,16 +38,26 @@ std::array<double, 3> barycentric(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
 
 }  // namespace
 
-ContourFitReport fit_to_contours(std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
-                                 const std::vector<std::vector<Vec3>>& contours, const std::vector<char>& fixed,
-                                 const ContourFitOptions& opt) {
-  ContourFitReport rep;
+std::vector<Vec3> contour_fit_samples(const std::vector<std::vector<Vec3>>& contours, double step) {
   std::vector<Vec3> samples;
   for (const std::vector<Vec3>& c : contours) {
     if (c.size() < 2) continue;
-    const std::vector<Vec3> s = sample_closed_polyline(c, opt.step_mm);
+    const std::vector<Vec3> s = sample_closed_polyline(c, step);
     samples.insert(samples.end(), s.begin(), s.end());
   }
+  return samples;
+}
+
+ContourFitReport fit_to_contours(std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
+                                 const std::vector<std::vector<Vec3>>& contours, const std::vector<char>& fixed,
+                                 const ContourFitOptions& opt) {
+  return fit_to_points(x, triangles, contour_fit_samples(contours, opt.step_mm), fixed, opt);
+}
+
+ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
+                               const std::vector<Vec3>& samples, const std::vector<char>& fixed,
+                               const ContourFitOptions& opt) {
+  ContourFitReport rep;
   const std::size_t nv = x.size(), ns = samples.size();
   if (ns == 0 || triangles.empty() || nv == 0) return rep;
   std::vector<std::vector<std::uint32_t>> nb(nv);

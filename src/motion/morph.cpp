@@ -434,30 +434,29 @@ bool mark_lost_angles(const std::vector<Vec3>& before, const std::vector<Vec3>& 
   return any;
 }
 
-// MorphOptions::contour_fit: fit_to_contours, kept only where it harms nothing. Where the fit leaves a
+// MorphOptions::contour_fit: fit_to_points on the contour samples, kept only where it harms nothing. Where the fit leaves a
 // triangle's smallest angle below min(its angle before, floor_deg), the vertices there (and a ring)
 // move within the fitted surface to raise it (repair_small_angles) and then stay while the fit is done
 // again around them. Where triangles still lose angles, or more triangles cross than before, those
 // vertices and two rings around them stay at their place before the fit and it is done again. Up to
 // four rounds; if no fit is harmless, x stays as it was.
 ContourFitReport guarded_contour_fit(std::vector<Vec3>& x, const std::vector<Triangle>& tris,
-                                     const std::vector<std::vector<Vec3>>& contours, std::vector<char> fixed,
+                                     const std::vector<Vec3>& samples, std::vector<char> fixed,
                                      const std::vector<std::size_t>& ring_start, const std::vector<std::uint32_t>& ring_index,
                                      double repair_below_deg, double floor_deg, const AngleRepairOptions& repair,
                                      const ContourFitOptions& options) {
-  const std::size_t crossings_before = count_self_intersections(TriangleMesh{x, tris});
   auto largest_distance = [&](const std::vector<Vec3>& positions) {
     ContourFitOptions measure = options;
     measure.iterations = 0;
     std::vector<Vec3> probe = positions;
-    return fit_to_contours(probe, tris, contours, fixed, measure).max_before_mm;
+    return fit_to_points(probe, tris, samples, fixed, measure).max_before_mm;
   };
   ContourFitReport rep;
   std::vector<Vec3> start = x;  // what each round fits from
   std::vector<Vec3> harmless;   // the last harmless result
   for (int round = 0; round < 4; ++round) {
     std::vector<Vec3> fitted = start;
-    const ContourFitReport cf = fit_to_contours(fitted, tris, contours, fixed, options);
+    const ContourFitReport cf = fit_to_points(fitted, tris, samples, fixed, options);
     if (round == 0) rep.max_before_mm = rep.max_after_mm = cf.max_before_mm;
     if (cf.moved == 0) break;
     std::vector<char> bad(x.size(), 0), repaired(x.size(), 0);
@@ -483,8 +482,13 @@ ContourFitReport guarded_contour_fit(std::vector<Vec3>& x, const std::vector<Tri
       std::fill(bad.begin(), bad.end(), 0);
       mark_lost_angles(x, fitted, tris, floor_deg, bad);
     }
+    // Crossings: only pairs with a triangle that moved can have changed.
+    std::vector<char> touched(tris.size(), 0);
+    for (std::size_t f = 0; f < tris.size(); ++f)
+      for (std::uint32_t v : tris[f]) touched[f] |= !(fitted[v] == x[v]);
     std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    if (count_self_intersections(TriangleMesh{fitted, tris}, &pairs, tris.size()) > crossings_before)
+    if (count_self_intersections_of(TriangleMesh{fitted, tris}, touched, &pairs, tris.size()) >
+        count_self_intersections_of(TriangleMesh{x, tris}, touched))
       for (const auto& [a, b] : pairs)
         for (std::size_t f : {a, b})
           for (std::uint32_t v : tris[f]) bad[v] = 1;
@@ -1012,7 +1016,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         std::vector<std::vector<Vec3>> contours;
         for (const Slice& s : seq.frames[t].slices)
           for (const Contour& c : s.contours) contours.push_back(c.points);
-        const ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, contours, pinned, ring_start, ring_index,
+        const std::vector<Vec3> samples = contour_fit_samples(contours, opt.fit.step_mm);
+        const ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, samples, pinned, ring_start, ring_index,
                                                         opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
         fr.fit_moved = cf.moved;
         fr.fit_max_before = cf.max_before_mm;

@@ -123,6 +123,18 @@ TEST(Topology, SelfIntersectionsCountCrossingSpheresOnly) {
   TriangleMesh reversed = crossing;
   std::reverse(reversed.triangles.begin(), reversed.triangles.end());
   EXPECT_EQ(count_self_intersections(reversed), tc.self_intersections);
+  // Restricted to flagged triangles: all flagged gives the full count, each sphere alone too (every
+  // crossing pair has one triangle on each), neither none.
+  const std::size_t half = a.triangles.size();
+  std::vector<char> all(crossing.triangles.size(), 1), first(crossing.triangles.size(), 0), none(crossing.triangles.size(), 0);
+  std::fill(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(half), 1);
+  std::vector<char> second(crossing.triangles.size(), 1);
+  std::fill(second.begin(), second.begin() + static_cast<std::ptrdiff_t>(half), 0);
+  EXPECT_EQ(count_self_intersections_of(crossing, all), tc.self_intersections);
+  EXPECT_EQ(count_self_intersections_of(crossing, first), tc.self_intersections);
+  EXPECT_EQ(count_self_intersections_of(crossing, second), tc.self_intersections);
+  EXPECT_EQ(count_self_intersections_of(crossing, none), 0u);
+  EXPECT_EQ(count_self_intersections_of(apart, std::vector<char>(apart.triangles.size(), 1)), 0u);
 }
 
 TEST(Topology, NonManifoldAndDegenerateElementsAreReported) {

@@ -42,4 +42,12 @@ ContourFitReport fit_to_contours(std::vector<Vec3>& x, const std::vector<Triangl
                                  const std::vector<std::vector<Vec3>>& contours, const std::vector<char>& fixed,
                                  const ContourFitOptions& options = {});
 
+//! The same with the samples given: points the surface should pass through (mm).
+ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
+                               const std::vector<Vec3>& samples, const std::vector<char>& fixed,
+                               const ContourFitOptions& options = {});
+
+//! The samples fit_to_contours uses: points every `step` mm along each closed polyline.
+std::vector<Vec3> contour_fit_samples(const std::vector<std::vector<Vec3>>& contours, double step);
+
 }  // namespace c4d
