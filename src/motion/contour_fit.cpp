@@ -60,16 +60,7 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
   ContourFitReport rep;
   const std::size_t nv = x.size(), ns = samples.size();
   if (ns == 0 || triangles.empty() || nv == 0) return rep;
-  std::vector<std::vector<std::uint32_t>> nb(nv);
-  for (const Triangle& t : triangles)
-    for (int k = 0; k < 3; ++k) {
-      nb[t[static_cast<std::size_t>(k)]].push_back(t[static_cast<std::size_t>((k + 1) % 3)]);
-      nb[t[static_cast<std::size_t>((k + 1) % 3)]].push_back(t[static_cast<std::size_t>(k)]);
-    }
-  for (auto& n : nb) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
+  std::vector<std::vector<std::uint32_t>> nb;  // one-rings, built once a region has to move
   std::vector<char> moved(nv, 0);
   std::vector<Vec3> closest(ns);
   std::vector<std::int32_t> tri_of(ns, -1);
@@ -99,6 +90,7 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
     if (it == 0) rep.max_before_mm = worst;
     rep.max_after_mm = worst;
     if (!any || it == opt.iterations) break;
+    if (nb.empty()) nb = vertex_neighbours(nv, triangles);
     for (int ring = 0; ring < opt.rings; ++ring) {
       std::vector<char> grown = region;
       for (std::size_t v = 0; v < nv; ++v)

@@ -696,9 +696,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   std::vector<Vec3> carry = frame0.positions;
 
   for (std::size_t t = 1; t < frames; ++t) {
-    const std::vector<Vec3> prev = carry;  // the previous frame's mesh (before its contour fit)
-    std::vector<Vec3> x = prev;
-    bool carried = false;
+    std::vector<Vec3> x = carry;  // the previous frame's mesh (before its contour fit)
     if (opt.vertical_deformation) vertical_predeformation(seq, frame0.triangles, static_cast<int>(t), opt, x);
     MorphFrameReport& fr = rep.frames[t];
     std::vector<ChainTarget> matched;
@@ -731,7 +729,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         deform_rbf(x, src, dst, project ? 1 : opt.rbf_steps);
       } catch (const SolverError&) {
         if (!project) throw;
-        x = prev;  // the projection below still fits the frame
+        x = carry;  // the projection below still fits the frame
       }
     }
     std::vector<char> pinned(nv, 0);
@@ -1008,27 +1006,25 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
         fr = best_report;
         fr.redone = true;
       }
-      if (opt.contour_fit) {
-        // 5. The surface onto the frame's contours where it cuts across them (contour_fit.h). The next
-        //    frame starts from the mesh before this fit.
-        carry = x;
-        carried = true;
-        std::vector<std::vector<Vec3>> contours;
-        for (const Slice& s : seq.frames[t].slices)
-          for (const Contour& c : s.contours) contours.push_back(c.points);
-        const std::vector<Vec3> samples = contour_fit_samples(contours, opt.fit.step_mm);
-        const ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, samples, pinned, ring_start, ring_index,
-                                                        opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
-        fr.fit_moved = cf.moved;
-        fr.fit_max_before = cf.max_before_mm;
-        fr.fit_max_after = cf.max_after_mm;
-      }
     }
     for (const Vec3& p : x)
       if (!is_finite(p))
         throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
                           "the deformation produced non-finite positions");
-    if (!carried) carry = x;
+    carry = x;
+    if (project && opt.contour_fit) {
+      // 5. The surface onto the frame's contours where it cuts across them (contour_fit.h). The next
+      //    frame starts from the mesh before this fit (carry).
+      std::vector<std::vector<Vec3>> contours;
+      for (const Slice& s : seq.frames[t].slices)
+        for (const Contour& c : s.contours) contours.push_back(c.points);
+      const std::vector<Vec3> samples = contour_fit_samples(contours, opt.fit.step_mm);
+      const ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, samples, pinned, ring_start, ring_index,
+                                                      opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
+      fr.fit_moved = cf.moved;
+      fr.fit_max_before = cf.max_before_mm;
+      fr.fit_max_after = cf.max_after_mm;
+    }
     out.positions.push_back(std::move(x));
   }
   return out;
