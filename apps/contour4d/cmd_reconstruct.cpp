@@ -181,7 +181,7 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       "Examples:\n"
       "  contour4d reconstruct ../shared/data/bivme-patient1/guidepoints -o out/lv\n"
       "  contour4d reconstruct contours.json --frame 0 -o out/frame0      # one frame only\n"
-      "  contour4d reconstruct contours.json --label lv-endo --edge 1.0 -o out/lv\n"
+      "  contour4d reconstruct contours.json --label lv-endo --edge 0.8 -o out/lv     # finer mesh (default edge 1 mm)\n"
       "  contour4d reconstruct contours.json --cap open -o out/cfd        # open ends for CFD inlets\n"
       "  contour4d reconstruct ../shared/data/sunnybrook-SC-HF-I-1 -o out/sb   # DICOM-referenced contours\n"
       "  contour4d reconstruct seg.nii.gz --labels acdc --label lv -o out/lv  # label masks (nnU-Net, Slicer)\n"

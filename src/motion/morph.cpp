@@ -1019,8 +1019,21 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       for (const Slice& s : seq.frames[t].slices)
         for (const Contour& c : s.contours) contours.push_back(c.points);
       const std::vector<Vec3> samples = contour_fit_samples(contours, opt.fit.step_mm);
-      const ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, samples, pinned, ring_start, ring_index,
-                                                      opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
+      ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, samples, pinned, ring_start, ring_index,
+                                                opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
+      if (cf.max_after_mm > opt.fit_goal_mm && opt.fit_fallback_min_angle_deg < opt.fit_min_angle_deg) {
+        // Still off its contours by more than the goal: once more from the mesh before the fit, with the
+        // lower angle floor; the closer of the two is kept.
+        std::vector<Vec3> y = carry;
+        const ContourFitReport again =
+            guarded_contour_fit(y, frame0.triangles, samples, pinned, ring_start, ring_index, opt.retry_min_angle_deg,
+                                opt.fit_fallback_min_angle_deg, opt.angle_repair, opt.fit);
+        if (again.max_after_mm < cf.max_after_mm) {
+          x = std::move(y);
+          cf.moved = again.moved;
+          cf.max_after_mm = again.max_after_mm;
+        }
+      }
       fr.fit_moved = cf.moved;
       fr.fit_max_before = cf.max_before_mm;
       fr.fit_max_after = cf.max_after_mm;

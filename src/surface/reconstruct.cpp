@@ -9,6 +9,8 @@
 // smooth across every contour while it interpolates them exactly.
 #include "contour4d/surface/reconstruct.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -118,6 +120,77 @@ double polygon_distance(Vec2 p, const std::vector<Vec2>& poly) {
   return best;
 }
 
+// Closest point to p on the closed polygon `poly`.
+Vec2 polygon_closest(Vec2 p, const std::vector<Vec2>& poly) {
+  double best = std::numeric_limits<double>::infinity();
+  Vec2 at = p;
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Vec2 a = poly[k], ab = poly[(k + 1) % poly.size()] - a;
+    const double l2 = dot(ab, ab);
+    const double t = l2 > 0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
+    const Vec2 q = a + t * ab;
+    if (const double d = norm(p - q); d < best) {
+      best = d;
+      at = q;
+    }
+  }
+  return at;
+}
+
+// Contours of one slice that touch or nearly touch (a section through a saddle: two contours meeting
+// at one point) are moved apart to `gap`: each point closer than `gap` to another contour moves by
+// half the shortfall, away from it (from a shared point: along its own normal, into its region for
+// two outer contours or two holes, out of it for a hole against its outer contour). Distinct
+// vertices at one position would otherwise be merged into a non-manifold vertex. Returns the number
+// of points moved.
+std::size_t separate_touching(std::vector<Node>& nodes, const std::vector<int>& slice_nodes, double gap) {
+  if (gap <= 0) return 0;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < slice_nodes.size(); ++i)
+    for (std::size_t j = i + 1; j < slice_nodes.size(); ++j) {
+      Node& a = nodes[static_cast<std::size_t>(slice_nodes[i])];
+      Node& b = nodes[static_cast<std::size_t>(slice_nodes[j])];
+      auto box = [](const std::vector<Vec2>& poly) {
+        std::array<double, 4> r{poly[0].x, poly[0].y, poly[0].x, poly[0].y};
+        for (const Vec2& p : poly) r = {std::min(r[0], p.x), std::min(r[1], p.y), std::max(r[2], p.x), std::max(r[3], p.y)};
+        return r;
+      };
+      const auto ba = box(a.poly), bb = box(b.poly);
+      if (ba[0] > bb[2] + gap || bb[0] > ba[2] + gap || ba[1] > bb[3] + gap || bb[1] > ba[3] + gap) continue;
+      // Same parity: both bound material on their left (canonical orientation), so "into the region" is left.
+      const double side = (a.depth % 2 == b.depth % 2) ? 1.0 : -1.0;
+      auto shifts = [&](const Node& self, const Node& other) {
+        std::vector<Vec2> out(self.poly.size(), Vec2{0, 0});
+        const std::size_t n = self.poly.size();
+        for (std::size_t k = 0; k < n; ++k) {
+          const Vec2 p = self.poly[k], q = polygon_closest(p, other.poly);
+          const double d = norm(p - q);
+          if (d >= gap) continue;
+          Vec2 dir = d > 1e-9 ? (1.0 / d) * (p - q) : Vec2{0, 0};
+          if (d <= 1e-9) {
+            const Vec2 t = self.poly[(k + 1) % n] - self.poly[(k + n - 1) % n];
+            const double lt = norm(t);
+            if (lt > 0) dir = (side / lt) * Vec2{-t.y, t.x};
+          }
+          out[k] = (0.5 * (gap - d)) * dir;
+        }
+        return out;
+      };
+      const std::vector<Vec2> sa = shifts(a, b), sb = shifts(b, a);
+      for (std::size_t k = 0; k < sa.size(); ++k)
+        if (sa[k].x != 0 || sa[k].y != 0) {
+          a.poly[k] = snap(a.poly[k] + sa[k]);
+          ++moved;
+        }
+      for (std::size_t k = 0; k < sb.size(); ++k)
+        if (sb[k].x != 0 || sb[k].y != 0) {
+          b.poly[k] = snap(b.poly[k] + sb[k]);
+          ++moved;
+        }
+    }
+  return moved;
+}
+
 int find_root(std::vector<int>& parent, int x) {
   while (parent[x] != x) x = parent[x] = parent[parent[x]];
   return x;
@@ -205,7 +278,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
                        "pick a frame from 0 to the frame count - 1");
   if (!(opt.edge > 0) || !std::isfinite(opt.edge))
     throw InvalidInput(ErrorCode::Usage, loc, "the target edge length must be a positive number of mm",
-                       "use e.g. --edge 1.25");
+                       "use e.g. --edge 1.0");
   const Frame& f = seq.frames[static_cast<std::size_t>(frame)];
 
   // Label selection.
@@ -307,11 +380,17 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
                                ": fewer than 3 distinct points, skipped");
         continue;
       }
-      for (const Vec2& p : n.poly) n.chain.push_back(b.add(from_plane(si.plane, p)));
       node_of[s][c] = static_cast<int>(nodes.size());
       si.nodes.push_back(static_cast<int>(nodes.size()));
       nodes.push_back(std::move(n));
     }
+    if (const std::size_t moved = separate_touching(nodes, si.nodes, opt.min_contour_gap); moved > 0)
+      rep.warnings.push_back(fmt::format("slice {}: contours touch or come closer than {} mm; {} points moved apart "
+                                         "by at most half that",
+                                         si.slice->id, opt.min_contour_gap, moved));
+    for (int id : si.nodes)
+      for (const Vec2& p : nodes[static_cast<std::size_t>(id)].poly)
+        nodes[static_cast<std::size_t>(id)].chain.push_back(b.add(from_plane(si.plane, p)));
   }
   rep.contours = static_cast<int>(nodes.size());
   const std::uint32_t contour_vertices = static_cast<std::uint32_t>(b.positions.size());

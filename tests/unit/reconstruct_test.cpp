@@ -203,6 +203,24 @@ TEST(Reconstruct, BranchOneToTwoAndTwoToOne) {
   }
 }
 
+TEST(Reconstruct, ContoursTouchingAtOnePointAreMovedApart) {
+  // A section exactly through a branch saddle: two circles sharing the point (0, 0) on slice 10.
+  // Unseparated (min_contour_gap = 0) the tiled surface has 2 non-manifold edges and 3 vertices.
+  const Shape shape = [](double z) {
+    if (z < 7) return Polys{ellipse(0, 0, 16, 8, 80)};
+    if (z < 12) return Polys{ellipse(-7, 0, 7, 7, 40), ellipse(7, 0, 7, 7, 40)};
+    return Polys{ellipse(-8, 0, 6, 6, 40), ellipse(8, 0, 6, 6, 40)};
+  };
+  const auto seq = stack(range(0, 15, 5), shape);
+  c4d::SurfaceReport rep;
+  const auto m = c4d::reconstruct_frame(seq, 0, c4d::SurfaceOptions{}, &rep);
+  expect_closed(m, 2, 1);
+  bool warned = false;
+  for (const auto& w : rep.warnings) warned = warned || w.find("contours touch") != std::string::npos;
+  EXPECT_TRUE(warned);
+  EXPECT_LT(conformity_max(seq, m), 0.05);  // points move by at most 0.01 mm; resampling adds its own
+}
+
 TEST(Reconstruct, StackOfAnnuliIsATorus) {
   const auto seq = stack(range(0, 20, 5), [](double) {
     auto hole = ellipse(0, 0, 7, 7, 40);

@@ -69,9 +69,10 @@ struct MorphOptions {
   VerticalDeformationOptions vertical;  //!< its options
   int untangle_rounds = 4;         //!< RbfProject: where triangles intersect after the relaxation, rounds of umbrella
                                    //!< steps within the surface around them (0: off; see angle_repair.h untangle)
-  AngleRepairOptions angle_repair;  //!< after the relaxation (RbfProject): vertices of triangles with an angle below
-                                    //!< angle_repair.target_deg move within the surface to maximise their ring's
-                                    //!< smallest angle (passes = 0: off)
+  AngleRepairOptions angle_repair{.passes = 8};  //!< after the relaxation (RbfProject): vertices of triangles with an
+                                    //!< angle below angle_repair.target_deg move within the surface to maximise their
+                                    //!< ring's smallest angle (passes = 0: off; 8 passes, not the surface's 4: the left
+                                    //!< heart's ES saddle at edge 1 mm keeps 9 triangles below 25° with 4)
   bool contour_fit = true;         //!< RbfProject: last, a small smooth fit of the frame's mesh onto all its contours
                                    //!< where the surface cuts across them (contour_fit.h), kept where it adds no
                                    //!< crossing triangles and leaves no angle below fit_min_angle_deg that was
@@ -80,6 +81,12 @@ struct MorphOptions {
   ContourFitOptions fit;           //!< its options
   double fit_min_angle_deg = 20;   //!< see contour_fit (25: biv-me frame 15 keeps 0.23 mm; 20: 0.13 mm, 3 triangles
                                    //!< below 25° in 25 frames)
+  double fit_goal_mm = 0.2;        //!< a frame whose fit leaves a contour sample farther than this from the mesh is
+                                   //!< fitted again from before the fit with fit_fallback_min_angle_deg, and the
+                                   //!< closer result is kept
+  double fit_fallback_min_angle_deg = 15;  //!< see fit_goal_mm (left-heart cycle, contours touching at the saddle:
+                                           //!< 0.27 → 0.15 mm; a floor of 15 on every frame: biv-me frame 6 gets 16
+                                           //!< triangles below 25°, against none)
   double relax_momentum = 0.9;     //!< heavy-ball momentum of the sweeps (0: plain Jacobi); speeds up the slow,
                                    //!< smooth modes about tenfold, so far fewer sweeps reach the same state
   double spring_weight = 0.0;      //!< relaxation: share of springs (frame-0 edge lengths) against the umbrella

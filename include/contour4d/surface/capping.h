@@ -20,7 +20,7 @@ enum class CapStyle {
 
 //! Options of a cap.
 struct CapOptions {
-  double edge = 1.25;    //!< target edge length of the cap's interior triangles (mm)
+  double edge = 1.0;     //!< target edge length of the cap's interior triangles (mm)
   double height = 2.5;   //!< dome height (mm), Rounded only; clipped to the region's half width
 };
 

@@ -25,8 +25,9 @@ enum class Tiling {
 //! Options of the one-frame surface.
 struct SurfaceOptions {
   std::string label;             //!< structure to build; empty: the frame must hold a single label
-  double edge = 1.25;            //!< target edge length (mm): contour resampling, rows, caps and remeshing
+  double edge = 1.0;             //!< target edge length (mm): contour resampling, rows, caps and remeshing
   double corner_angle_deg = 30;  //!< contour vertices turning more than this are kept exactly
+  double min_contour_gap = 0.02;  //!< contours of one slice closer than this (mm; e.g. touching at a saddle) are moved apart to it
   double contour_tolerance = 0.01;  //!< resampled contours stay about this close to the input (mm): finer spacing on bends (0: spacing `edge`)
   CapStyle caps = CapStyle::Rounded;  //!< how ends are closed
   double cap_height = 0.5;       //!< Rounded cap height as a fraction of the adjacent slice spacing (≤ 0.5)

@@ -14,7 +14,7 @@ namespace c4d {
 
 //! Options of remeshing.
 struct RemeshOptions {
-  double edge = 1.25;    //!< target edge length (mm)
+  double edge = 1.0;     //!< target edge length (mm)
   int iterations = 5;    //!< split/collapse/flip/relax rounds
   bool split_constraints = true;  //!< allow splitting contour edges longer than 4/3 edge (new vertices stay on them)
 };

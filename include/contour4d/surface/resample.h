@@ -12,7 +12,7 @@ namespace c4d {
 
 //! Options for contour resampling.
 struct ResampleOptions {
-  double edge = 1.25;              //!< target spacing along the contour (mm)
+  double edge = 1.0;               //!< target spacing along the contour (mm)
   double corner_angle_deg = 30.0;  //!< input vertices turning more than this are kept exactly
   double tolerance = 0.0;          //!< largest chord deviation from the input on curved arcs (mm); 0: spacing `edge` only
 };
