@@ -108,18 +108,6 @@ CanonicalFrame canonical_frame(const Sequence& sub) {
 double snap(double x) { return std::ldexp(std::nearbyint(std::ldexp(x, 30)), -30); }
 Vec2 snap(Vec2 p) { return {snap(p.x), snap(p.y)}; }
 
-// Distance from p to the closed polygon `poly` (its edges).
-double polygon_distance(Vec2 p, const std::vector<Vec2>& poly) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < poly.size(); ++k) {
-    const Vec2 a = poly[k], ab = poly[(k + 1) % poly.size()] - a;
-    const double l2 = dot(ab, ab);
-    const double t = l2 > 0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-    best = std::min(best, norm(p - (a + t * ab)));
-  }
-  return best;
-}
-
 // Closest point to p on the closed polygon `poly`.
 Vec2 polygon_closest(Vec2 p, const std::vector<Vec2>& poly) {
   double best = std::numeric_limits<double>::infinity();
@@ -136,6 +124,9 @@ Vec2 polygon_closest(Vec2 p, const std::vector<Vec2>& poly) {
   }
   return at;
 }
+
+// Distance from p to the closed polygon `poly` (its edges).
+double polygon_distance(Vec2 p, const std::vector<Vec2>& poly) { return norm(p - polygon_closest(p, poly)); }
 
 // Contours of one slice that touch or nearly touch (a section through a saddle: two contours meeting
 // at one point) are moved apart to `gap`: each point closer than `gap` to another contour moves by
@@ -176,17 +167,16 @@ std::size_t separate_touching(std::vector<Node>& nodes, const std::vector<int>& 
         }
         return out;
       };
-      const std::vector<Vec2> sa = shifts(a, b), sb = shifts(b, a);
-      for (std::size_t k = 0; k < sa.size(); ++k)
-        if (sa[k].x != 0 || sa[k].y != 0) {
-          a.poly[k] = snap(a.poly[k] + sa[k]);
-          ++moved;
-        }
-      for (std::size_t k = 0; k < sb.size(); ++k)
-        if (sb[k].x != 0 || sb[k].y != 0) {
-          b.poly[k] = snap(b.poly[k] + sb[k]);
-          ++moved;
-        }
+      auto apply = [&](Node& self, const std::vector<Vec2>& by) {
+        for (std::size_t k = 0; k < by.size(); ++k)
+          if (by[k].x != 0 || by[k].y != 0) {
+            self.poly[k] = snap(self.poly[k] + by[k]);
+            ++moved;
+          }
+      };
+      const std::vector<Vec2> sa = shifts(a, b), sb = shifts(b, a);  // both from the positions before
+      apply(a, sa);
+      apply(b, sb);
     }
   return moved;
 }
