@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
   std::printf("Table I  %zu vertices, %zu triangles, %zu frames (encode %.2f s)\n", nv, nt, frames, enc_s);
   std::printf("  per-frame VTP  %12.0f B  (%.0fx model.c4d)\n", vtp, vtp / c4d);
   std::printf("  per-frame PLY  %12.0f B  (%.0fx model.c4d)\n", ply, ply / c4d);
-  std::printf("  model.c4d      %12zu B  (index %zu, positions %zu, motion %zu, corrections %zu [%zu]) vertex max %.4f mm\n",
+  std::printf("  model.c4d      %12zu B  (before zstd: index %zu, positions %zu, motion %zu, corrections %zu [%zu]) vertex max %.4f mm\n",
               c4d, st.index_bytes, st.position_bytes, st.motion_bytes, st.correction_bytes, st.corrected_vertices,
               st.max_error);
   std::printf("  model.c4d      %12zu B  --error surface: surface max %.4f mm (%.0fx PLY)\n", c4ds, ss.max_surface_error,

@@ -27,6 +27,9 @@ c4d_require(ITK libinsighttoolkit5-dev COMPONENTS ITKCommon ITKIOImageBase ITKIO
 c4d_require(TinyGLTF libtinygltf-dev)
 c4d_require(meshoptimizer libmeshoptimizer-dev)
 
+# model.c4d: the payload is one zstd frame (docs/compact.md).
+c4d_require(zstd libzstd-dev)
+
 # Headless rendering (EGL + OpenGL, Mesa's llvmpipe where there is no GPU) and the viewer (GLFW).
 find_package(OpenGL COMPONENTS OpenGL EGL)
 if(C4D_BUILD_VIEWER)

@@ -8,7 +8,7 @@ PACKAGES=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev
   libinsighttoolkit5-dev libgdcm-tools
-  libtinygltf-dev libmeshoptimizer-dev libstb-dev
+  libtinygltf-dev libmeshoptimizer-dev libzstd-dev libstb-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev
   libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -1,9 +1,14 @@
 // model.c4d: the compact 4D model on disk (docs/compact.md). Explicit little-endian fields, so the
-// file is the same on every machine; the checksum catches truncation and bit rot before decoding.
+// file is the same on every machine; the checksum catches truncation and bit rot before decoding; the
+// payload is one zstd frame (version 3, flag bit 1), decompressed into a buffer of its declared size.
 #include "contour4d/io/model_c4d.h"
 
+#include <zstd.h>
+
+#include <algorithm>
 #include <cstring>
 #include <limits>
+#include <memory>
 
 #include "contour4d/core/errors.h"
 #include "contour4d/io/output_dir.h"
@@ -12,7 +17,49 @@ namespace c4d {
 namespace {
 
 constexpr char kMagic[8] = {'C', '4', 'D', 'M', 'O', 'D', 'E', 'L'};
-constexpr std::size_t kHeader = 8 + 4 + 4 + 8 + 8;
+constexpr std::size_t kHeader = kModelC4dHeaderBytes;
+constexpr std::uint32_t kFlagSurface = 1u;     // bit 0: surface corrections (CompactError::Surface)
+constexpr std::uint32_t kFlagZstd = 2u;        // bit 1: the stored payload is one zstd frame
+// Every zstd block yields at most ZSTD_BLOCKSIZE_MAX bytes and takes at least 4 (3-byte header + 1
+// byte of an RLE block), so a frame of n bytes cannot hold more than this many bytes per byte of it.
+constexpr std::uint64_t kMaxZstdRatio = ZSTD_BLOCKSIZE_MAX / 4;
+
+[[noreturn]] void damaged(const std::string& name, const std::string& what) {
+  throw IoError(ErrorCode::Parse, {name}, what, "the file is damaged: run `contour4d pack` again");
+}
+
+// A decompressed payload (not zero-filled first: a bogus frame that fails early touches little memory).
+struct Buffer {
+  std::unique_ptr<char[]> data;
+  std::size_t size = 0;
+};
+
+// The version-2 payload inside a stored zstd frame: exactly one frame, its content size declared,
+// plausible for its length and at most kModelC4dMaxPayload; decompressed to exactly that size.
+Buffer decompress_payload(std::string_view stored, const std::string& name) {
+  const unsigned long long content = ZSTD_getFrameContentSize(stored.data(), stored.size());
+  if (content == ZSTD_CONTENTSIZE_ERROR) damaged(name, "the compressed payload has an invalid zstd frame header");
+  if (content == ZSTD_CONTENTSIZE_UNKNOWN) damaged(name, "the zstd frame of the payload does not declare its size");
+  if (content > kModelC4dMaxPayload)
+    throw IoError(ErrorCode::Parse, {name},
+                  "the zstd frame declares a payload of " + std::to_string(content) + " bytes, more than this build reads (" +
+                      std::to_string(kModelC4dMaxPayload) + ")",
+                  "the file is damaged or not from `contour4d pack`: run `contour4d pack` again");
+  const std::size_t frame = ZSTD_findFrameCompressedSize(stored.data(), stored.size());
+  if (ZSTD_isError(frame)) damaged(name, std::string("the compressed payload is not a valid zstd frame (") + ZSTD_getErrorName(frame) + ")");
+  if (frame != stored.size())
+    damaged(name, "the compressed payload has " + std::to_string(stored.size() - frame) + " bytes after its zstd frame");
+  if (content > static_cast<std::uint64_t>(stored.size()) * kMaxZstdRatio)
+    damaged(name, "the zstd frame declares " + std::to_string(content) + " bytes, impossible in " +
+                      std::to_string(stored.size()) + " compressed bytes");
+  Buffer out{std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(content)), static_cast<std::size_t>(content)};
+  const std::size_t got = ZSTD_decompress(out.data.get(), out.size, stored.data(), stored.size());
+  if (ZSTD_isError(got)) damaged(name, std::string("the compressed payload does not decompress (") + ZSTD_getErrorName(got) + ")");
+  if (got != out.size)
+    damaged(name, "the compressed payload decompresses to " + std::to_string(got) + " bytes, its frame declares " +
+                      std::to_string(out.size));
+  return out;
+}
 
 void put_u32(std::string& s, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) s.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
@@ -83,7 +130,7 @@ std::uint64_t fnv1a64(std::string_view bytes) {
   return h;
 }
 
-std::string serialize_model_c4d(const CompactModel& m) {
+std::string serialize_model_c4d(const CompactModel& m, const ModelC4dWriteOptions& options) {
   std::string p;
   put_u32(p, m.vertex_count);
   put_u32(p, m.triangle_count);
@@ -111,9 +158,20 @@ std::string serialize_model_c4d(const CompactModel& m) {
   put_block(p, m.motion);
   for (const auto& c : m.corrections) put_block(p, c);
 
+  std::uint32_t flags = m.error == CompactError::Surface ? kFlagSurface : 0u;
+  if (options.compress) {  // one zstd frame (ZSTD_compress: single-threaded, content size in the header)
+    std::string z(ZSTD_compressBound(p.size()), '\0');
+    const std::size_t n = ZSTD_compress(z.data(), z.size(), p.data(), p.size(), options.level);
+    if (ZSTD_isError(n))
+      throw Error(ErrorCode::Internal, {}, std::string("zstd compression failed: ") + ZSTD_getErrorName(n),
+                  "please report this bug");
+    z.resize(n);
+    p = std::move(z);
+    flags |= kFlagZstd;
+  }
   std::string out(kMagic, 8);
   put_u32(out, kModelC4dVersion);
-  put_u32(out, m.error == CompactError::Surface ? 1u : 0u);  // flags: bit 0 = surface corrections
+  put_u32(out, flags);
   put_u64(out, p.size());
   put_u64(out, fnv1a64(p));
   out += p;
@@ -121,17 +179,24 @@ std::string serialize_model_c4d(const CompactModel& m) {
 }
 
 CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
-  if (bytes.size() < kHeader || std::memcmp(bytes.data(), kMagic, 8) != 0)
+  if (bytes.empty())
+    throw IoError(ErrorCode::EmptyFile, {name}, "the file is empty", "pass a model.c4d written by `contour4d pack`");
+  if (std::memcmp(bytes.data(), kMagic, std::min<std::size_t>(bytes.size(), 8)) != 0)
     throw IoError(ErrorCode::Format, {name}, "not a contour4d model file (bad magic)",
                   "pass a model.c4d written by `contour4d pack`");
+  if (bytes.size() < kHeader)
+    throw IoError(ErrorCode::Parse, {name}, "truncated model file (header of " + std::to_string(bytes.size()) + " of " +
+                      std::to_string(kHeader) + " bytes)",
+                  "the file is incomplete: run `contour4d pack` again");
   Reader h{bytes, 8, name};
   const std::uint32_t version = h.u32();
-  if (version != 1 && version != kModelC4dVersion)
-    throw IoError(ErrorCode::Format, {name}, "model.c4d version " + std::to_string(version) + " is not supported (this build reads " +
+  if (version < 1 || version > kModelC4dVersion)
+    throw IoError(ErrorCode::Format, {name}, "model.c4d version " + std::to_string(version) + " is not supported (this build reads 1 to " +
                       std::to_string(kModelC4dVersion) + ")",
                   "pack the 4D mesh again with this contour4d");
   const std::uint32_t flags = h.u32();
-  if (flags > (version >= 2 ? 1u : 0u))
+  const std::uint32_t allowed = version == 1 ? 0u : version == 2 ? kFlagSurface : kFlagSurface | kFlagZstd;
+  if ((flags & ~allowed) != 0)
     throw IoError(ErrorCode::Format, {name}, "model.c4d flags " + std::to_string(flags) + " are not supported",
                   "pack the 4D mesh again with this contour4d");
   const std::uint64_t size = h.u(8);
@@ -139,12 +204,15 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
   if (size != bytes.size() - kHeader)
     throw IoError(ErrorCode::Parse, {name}, "payload is " + std::to_string(bytes.size() - kHeader) + " bytes, header says " + std::to_string(size),
                   "the file is truncated or padded: run `contour4d pack` again");
-  const std::string_view payload = bytes.substr(kHeader);
-  if (fnv1a64(payload) != sum)
+  const std::string_view stored = bytes.substr(kHeader);
+  if (fnv1a64(stored) != sum)
     throw IoError(ErrorCode::Parse, {name}, "checksum mismatch", "the file is damaged: run `contour4d pack` again");
+  Buffer decompressed;
+  if (flags & kFlagZstd) decompressed = decompress_payload(stored, name);
+  const std::string_view payload = (flags & kFlagZstd) ? std::string_view(decompressed.data.get(), decompressed.size) : stored;
   Reader r{payload, 0, name};
   CompactModel m;
-  m.error = (flags & 1u) ? CompactError::Surface : CompactError::Vertex;
+  m.error = (flags & kFlagSurface) ? CompactError::Surface : CompactError::Vertex;
   m.vertex_count = r.u32();
   m.triangle_count = r.u32();
   m.frame_count = r.u32();
@@ -161,7 +229,9 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
     throw IoError(ErrorCode::Parse, {name}, "more control vertices than vertices", "the file is damaged: run `contour4d pack` again");
   std::uint64_t id = 0;
   for (std::uint32_t i = 0; i < nc; ++i) {
-    id = (i == 0 ? 0 : id + 1) + r.varint();
+    const std::uint64_t gap = r.varint();  // checked before adding, so a huge gap cannot wrap around
+    if (gap >= m.vertex_count) damaged(name, "control vertex id out of range");
+    id = (i == 0 ? 0 : id + 1) + gap;
     if (id >= m.vertex_count)
       throw IoError(ErrorCode::Parse, {name}, "control vertex id out of range", "the file is damaged: run `contour4d pack` again");
     m.control.push_back(static_cast<std::uint32_t>(id));
@@ -175,8 +245,8 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
   return m;
 }
 
-void write_model_c4d(const std::filesystem::path& path, const CompactModel& model) {
-  write_file_atomic(path, serialize_model_c4d(model));
+void write_model_c4d(const std::filesystem::path& path, const CompactModel& model, const ModelC4dWriteOptions& options) {
+  write_file_atomic(path, serialize_model_c4d(model, options));
 }
 
 CompactModel read_model_c4d(const std::filesystem::path& path) {

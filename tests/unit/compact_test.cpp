@@ -2,16 +2,22 @@
 #include "contour4d/temporal/compact.h"
 
 #include <gtest/gtest.h>
+#include <zstd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "contour4d/core/errors.h"
 #include "contour4d/io/model_c4d.h"
 #include "contour4d/temporal/displacement_map.h"
 #include "contour4d/temporal/sequence.h"
+#include "corpus_check.h"
 #include "temporal_fixtures.h"
 
 namespace c4d {
@@ -164,6 +170,300 @@ TEST(Compact, FileRoundTripAndCorruption) {
   } catch (const IoError& e) {
     EXPECT_EQ(e.code(), ErrorCode::Format);
   }
+}
+
+// --- model.c4d version 3: the payload as one zstd frame (flag bit 1) -----------------------------
+
+// Little-endian field of a file's bytes.
+std::uint64_t le(const std::string& b, std::size_t at, int bytes) {
+  std::uint64_t v = 0;
+  for (int i = 0; i < bytes; ++i) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(b[at + i])) << (8 * i);
+  return v;
+}
+void put_le(std::string& s, std::uint64_t v, int bytes) {
+  for (int i = 0; i < bytes; ++i) s.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+
+// A model.c4d around `stored` with a correct size and checksum.
+std::string with_header(std::uint32_t version, std::uint32_t flags, std::string_view stored) {
+  std::string out = "C4DMODEL";
+  put_le(out, version, 4);
+  put_le(out, flags, 4);
+  put_le(out, stored.size(), 8);
+  put_le(out, fnv1a64(stored), 8);
+  out.append(stored);
+  return out;
+}
+std::string stored_payload(const std::string& file) { return file.substr(kModelC4dHeaderBytes); }
+
+// A zstd frame (magic, frame header with a window descriptor, one last empty raw block) that declares
+// `content` bytes (8-byte field), or no size at all when `content` is negative.
+std::string zstd_frame_declaring(long long content) {
+  std::string f("\x28\xb5\x2f\xfd", 4);
+  if (content < 0) {
+    f += std::string("\x00\x00", 2);  // FHD: no content size, not single segment; window 1 KiB
+  } else {
+    f += std::string("\xc0\x00", 2);  // FHD: 8-byte content size, not single segment; window 1 KiB
+    put_le(f, static_cast<std::uint64_t>(content), 8);
+  }
+  f += std::string("\x01\x00\x00", 3);  // last block, raw, 0 bytes
+  return f;
+}
+
+// `payload` as one zstd frame at level 19, as the writer stores it.
+std::string zstd_compress(std::string_view payload) {
+  std::string z(ZSTD_compressBound(payload.size()), '\0');
+  const std::size_t n = ZSTD_compress(z.data(), z.size(), payload.data(), payload.size(), 19);
+  EXPECT_FALSE(ZSTD_isError(n));
+  z.resize(ZSTD_isError(n) ? 0 : n);
+  return z;
+}
+
+void expect_same_model(const CompactModel& a, const CompactModel& b) {
+  EXPECT_EQ(a.vertex_count, b.vertex_count);
+  EXPECT_EQ(a.triangle_count, b.triangle_count);
+  EXPECT_EQ(a.frame_count, b.frame_count);
+  EXPECT_EQ(a.times_ms, b.times_ms);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(a.origin[i], b.origin[i]);
+  EXPECT_EQ(a.grid_step, b.grid_step);
+  EXPECT_EQ(a.motion_step, b.motion_step);
+  EXPECT_EQ(a.residual_step, b.residual_step);
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.neighbours, b.neighbours);
+  EXPECT_EQ(a.error, b.error);
+  EXPECT_EQ(a.indices, b.indices);
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.control, b.control);
+  EXPECT_EQ(a.motion, b.motion);
+  EXPECT_EQ(a.corrections, b.corrections);
+}
+
+// The code of the IoError that parsing `bytes` throws; fails the test on success or another exception.
+ErrorCode parse_error(const std::string& bytes, const std::string& name = "model.c4d") {
+  try {
+    parse_model_c4d(bytes, name);
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << "message must name the file: " << e.what();
+    return e.code();
+  }
+  ADD_FAILURE() << "no IoError";
+  return ErrorCode::Internal;
+}
+
+ModelC4dWriteOptions uncompressed() {
+  ModelC4dWriteOptions o;
+  o.compress = false;
+  return o;
+}
+
+TEST(CompactFile, CompressedRoundTripEqualsUncompressed) {
+  const MeshSequence seq = synthetic_beating_mesh(3, 6);
+  for (CompactError mode : {CompactError::Vertex, CompactError::Surface}) {
+    CompactOptions opt;
+    opt.control_vertices = 60;
+    opt.error = mode;
+    const CompactModel m = compact_encode(seq, opt);
+    const std::string z = serialize_model_c4d(m);
+    const std::string raw = serialize_model_c4d(m, uncompressed());
+    const std::uint32_t surface = mode == CompactError::Surface ? 1u : 0u;
+    EXPECT_EQ(le(z, 8, 4), kModelC4dVersion);
+    EXPECT_EQ(kModelC4dVersion, 3u);
+    EXPECT_EQ(le(z, 12, 4), 2u | surface);  // bit 1: zstd
+    EXPECT_EQ(le(raw, 8, 4), 3u);
+    EXPECT_EQ(le(raw, 12, 4), surface);
+    EXPECT_EQ(le(z, 16, 8), z.size() - kModelC4dHeaderBytes);
+    EXPECT_LT(z.size(), raw.size());
+    EXPECT_EQ(serialize_model_c4d(m), z);  // byte-identical when written twice
+    const CompactModel from_z = parse_model_c4d(z), from_raw = parse_model_c4d(raw);
+    expect_same_model(from_z, from_raw);
+    expect_same_model(from_z, m);
+    EXPECT_EQ(serialize_model_c4d(from_z), z);
+  }
+}
+
+// A version-2 file (the uncompressed payload, flag bit 0 only) still reads; bit 1 is not allowed there.
+TEST(CompactFile, ReadsVersionTwoAndRejectsNewFlagsInOldVersions) {
+  CompactOptions opt;
+  opt.error = CompactError::Surface;
+  const CompactModel m = compact_encode(synthetic_beating_mesh(2, 4), opt);
+  const std::string payload = stored_payload(serialize_model_c4d(m, uncompressed()));
+  const CompactModel v2 = parse_model_c4d(with_header(2, 1, payload));
+  expect_same_model(v2, m);
+  EXPECT_EQ(v2.error, CompactError::Surface);
+  const CompactModel v1 = parse_model_c4d(with_header(1, 0, payload));
+  EXPECT_EQ(v1.error, CompactError::Vertex);
+  EXPECT_EQ(v1.corrections, m.corrections);
+  const std::string zstored = stored_payload(serialize_model_c4d(m));
+  expect_same_model(parse_model_c4d(with_header(3, 3, zstored)), m);
+  EXPECT_EQ(parse_error(with_header(2, 3, zstored)), ErrorCode::Format);   // zstd flag in version 2
+  EXPECT_EQ(parse_error(with_header(2, 2, payload)), ErrorCode::Format);
+  EXPECT_EQ(parse_error(with_header(1, 1, payload)), ErrorCode::Format);   // no flags in version 1
+  EXPECT_EQ(parse_error(with_header(3, 4, payload)), ErrorCode::Format);   // unknown bit 2
+  EXPECT_EQ(parse_error(with_header(3, 0x80000000u, payload)), ErrorCode::Format);
+  EXPECT_EQ(parse_error(with_header(0, 0, payload)), ErrorCode::Format);
+  EXPECT_EQ(parse_error(with_header(4, 0, payload)), ErrorCode::Format);
+  // A raw payload flagged as zstd, and a zstd frame not flagged: both fail cleanly.
+  EXPECT_EQ(parse_error(with_header(3, 2, payload)), ErrorCode::Parse);
+  EXPECT_EQ(parse_error(with_header(3, 0, zstored)), ErrorCode::Parse);
+}
+
+// Bytes flipped inside the zstd frame, with a recomputed (valid) checksum: the decompressor or the
+// payload parser catches them; nothing but IoError escapes, and nothing crashes.
+TEST(CompactFile, CorruptZstdFrameWithValidChecksum) {
+  const CompactModel m = compact_encode(synthetic_beating_mesh(2, 4));
+  const std::string zstored = stored_payload(serialize_model_c4d(m));
+  std::size_t rejected = 0, tried = 0;
+  for (std::size_t i = 0; i < zstored.size(); ++i)
+    for (unsigned char mask : {0x01, 0x10, 0xff}) {
+      std::string bad = zstored;
+      bad[i] = static_cast<char>(bad[i] ^ mask);
+      ++tried;
+      try {
+        parse_model_c4d(with_header(3, 2, bad));
+      } catch (const IoError& e) {
+        EXPECT_EQ(e.code(), ErrorCode::Parse) << e.what();
+        ++rejected;
+      }
+    }
+  // zstd frames carry no checksum of their own (the header's FNV covers the stored bytes): many flips
+  // decode to another payload that parses (about 3 in 4 here, in entropy-coded literals and in the
+  // meshopt and varint blocks, which the parser does not interpret); the others fail cleanly.
+  EXPECT_GT(rejected, tried / 10) << rejected << " of " << tried;
+  // The frame's magic, a frame cut short, and bytes after the frame always fail.
+  std::string bad = zstored;
+  bad[0] = static_cast<char>(bad[0] ^ 0x01);
+  EXPECT_EQ(parse_error(with_header(3, 2, bad)), ErrorCode::Parse);
+  for (std::size_t n = 0; n < zstored.size(); n += 5)
+    EXPECT_EQ(parse_error(with_header(3, 2, zstored.substr(0, n))), ErrorCode::Parse) << n;
+  EXPECT_EQ(parse_error(with_header(3, 2, zstored + std::string("\0", 1))), ErrorCode::Parse);
+  EXPECT_EQ(parse_error(with_header(3, 2, zstored + zstored)), ErrorCode::Parse);
+  // A valid frame around a damaged payload: the payload parser rejects it as it would uncompressed.
+  const std::string payload = stored_payload(serialize_model_c4d(m, uncompressed()));
+  EXPECT_EQ(zstd_compress(payload), zstored);  // the writer's frame is ZSTD_compress at level 19
+  for (std::size_t n = 0; n < payload.size(); n += 3)
+    EXPECT_EQ(parse_error(with_header(3, 2, zstd_compress(payload.substr(0, n)))), ErrorCode::Parse) << n;
+  EXPECT_EQ(parse_error(with_header(3, 2, zstd_compress(payload + "x"))), ErrorCode::Parse);
+}
+
+// A frame declaring more than 1 GiB, more than its length can hold, or no size: refused up front.
+TEST(CompactFile, RefusesImplausibleZstdContentSize) {
+  for (long long declared : {1LL << 40, (1LL << 30) + 1, -1LL, 1LL << 29, 1000LL}) {
+    SCOPED_TRACE(declared);
+    EXPECT_EQ(parse_error(with_header(3, 2, zstd_frame_declaring(declared)), "huge.c4d"), ErrorCode::Parse);
+  }
+  try {
+    parse_model_c4d(with_header(3, 2, zstd_frame_declaring(1LL << 40)), "huge.c4d");
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("1099511627776"), std::string::npos) << e.what();
+  }
+  // The hand-made frame itself is valid: declaring 0 bytes, it decompresses to an empty payload,
+  // which the payload parser reports as truncated.
+  EXPECT_EQ(parse_error(with_header(3, 2, zstd_frame_declaring(0))), ErrorCode::Parse);
+}
+
+// A control-id gap so large that adding it wraps around 2^64 (back to an id already read) is refused,
+// compressed or not: the ids must increase.
+TEST(CompactFile, RejectsWrappingControlGap) {
+  const CompactModel m = compact_encode(synthetic_beating_mesh(2, 4));
+  ASSERT_GE(m.control.size(), 2u);
+  const std::string payload = stored_payload(serialize_model_c4d(m, uncompressed()));
+  const std::size_t first = 16 + 8 * 7 + 8 * static_cast<std::size_t>(m.frame_count) + 4;  // first varint gap
+  std::size_t second = first;
+  while (static_cast<unsigned char>(payload[second]) & 0x80) ++second;
+  ++second;
+  std::size_t third = second;
+  while (static_cast<unsigned char>(payload[third]) & 0x80) ++third;
+  ++third;
+  // 2^64 - 1 as a varint: id = previous + 1 + (2^64 - 1) wraps to the previous id.
+  const std::string wrap = std::string(9, '\xff') + '\x01';
+  const std::string bad = payload.substr(0, second) + wrap + payload.substr(third);
+  EXPECT_EQ(parse_error(with_header(3, 0, bad)), ErrorCode::Parse);
+  EXPECT_EQ(parse_error(with_header(3, 2, zstd_compress(bad))), ErrorCode::Parse);
+}
+
+TEST(CompactFile, TruncationsFail) {
+  const CompactModel m = compact_encode(synthetic_beating_mesh(2, 4));
+  for (const std::string& bytes : {serialize_model_c4d(m), serialize_model_c4d(m, uncompressed())}) {
+    for (std::size_t n = 0; n < bytes.size(); ++n) {
+      EXPECT_EQ(parse_error(bytes.substr(0, n)), n == 0 ? ErrorCode::EmptyFile : ErrorCode::Parse) << n;
+    }
+  }
+}
+
+// tests/corpus/model_c4d: bad_NN_* must fail with ErrorCode NN and name the file, good_* read.
+// The files come from CompactFile.WriteCorpus (see the folder's README.md).
+TEST(CompactFile, Corpus) {
+  const test::CorpusCounts n =
+      test::check_corpus("model_c4d", [](const std::filesystem::path& p) { compact_decode(read_model_c4d(p)); });
+  EXPECT_GE(n.bad, 8);
+  EXPECT_GE(n.good, 3);
+}
+
+// Regenerates tests/corpus/model_c4d into $C4D_WRITE_MODEL_C4D_CORPUS (skipped when it is unset):
+//   C4D_WRITE_MODEL_C4D_CORPUS=tests/corpus/model_c4d build-zstd/tests/compact_test --gtest_filter=CompactFile.WriteCorpus
+TEST(CompactFile, WriteCorpus) {
+  const char* out = std::getenv("C4D_WRITE_MODEL_C4D_CORPUS");
+  if (out == nullptr) GTEST_SKIP() << "set C4D_WRITE_MODEL_C4D_CORPUS to a folder to write the corpus";
+  namespace fs = std::filesystem;
+  fs::create_directories(out);
+  auto write = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(fs::path(out) / name, std::ios::binary) << bytes;
+  };
+  // Tiny models: the 42-vertex beating shape over 3 frames, few control vertices.
+  const MeshSequence seq = synthetic_beating_mesh(1, 3);
+  CompactOptions opt;
+  opt.control_vertices = 8;
+  opt.neighbours = 4;
+  const CompactModel mv = compact_encode(seq, opt);
+  opt.error = CompactError::Surface;
+  const CompactModel ms = compact_encode(seq, opt);
+  const std::string z = serialize_model_c4d(mv), raw = serialize_model_c4d(mv, uncompressed());
+  const std::string zstored = stored_payload(z), payload = stored_payload(raw);
+  write("good_v3_zstd.c4d", z);
+  write("good_v3_zstd_surface.c4d", serialize_model_c4d(ms));
+  write("good_v3_uncompressed.c4d", raw);
+  write("good_v2.c4d", with_header(2, 1, stored_payload(serialize_model_c4d(ms, uncompressed()))));
+  write("good_v1.c4d", with_header(1, 0, payload));
+  std::string magic = z;
+  magic[3] = 'X';
+  write("bad_13_bad_magic.c4d", magic);
+  write("bad_11_empty.c4d", "");
+  write("bad_12_truncated_magic.c4d", "C4DMO");
+  write("bad_13_version_4.c4d", with_header(4, 2, zstored));
+  write("bad_13_version_0.c4d", with_header(0, 0, payload));
+  write("bad_13_zstd_flag_in_v2.c4d", with_header(2, 2, zstored));
+  write("bad_13_unknown_flag_bit2.c4d", with_header(3, 6, zstored));
+  write("bad_12_truncated_header.c4d", z.substr(0, kModelC4dHeaderBytes - 3));
+  write("bad_12_truncated_payload.c4d", z.substr(0, z.size() - 10));
+  std::string sum = z;
+  sum[sum.size() - 7] = static_cast<char>(sum[sum.size() - 7] ^ 0x04);
+  write("bad_12_checksum_mismatch.c4d", sum);
+  write("bad_12_zstd_frame_cut_short.c4d", with_header(3, 2, zstored.substr(0, zstored.size() - 6)));
+  write("bad_12_zstd_trailing_bytes.c4d", with_header(3, 2, zstored + "\x01\x02"));
+  write("bad_12_zstd_huge_content_size.c4d", with_header(3, 2, zstd_frame_declaring(1LL << 40)));
+  write("bad_12_zstd_unknown_content_size.c4d", with_header(3, 2, zstd_frame_declaring(-1)));
+  write("bad_12_zstd_flag_on_raw_payload.c4d", with_header(3, 2, payload));
+  write("bad_12_raw_flag_on_zstd_payload.c4d", with_header(3, 0, zstored));
+  // A flip inside the frame (after its header) that the decompressor itself rejects, checksum fixed.
+  for (std::size_t i = zstored.size() / 2; i < zstored.size(); ++i) {
+    std::string bad = zstored;
+    bad[i] = static_cast<char>(bad[i] ^ 0xff);
+    try {
+      parse_model_c4d(with_header(3, 2, bad));
+    } catch (const IoError& e) {
+      if (std::string(e.what()).find("does not decompress") == std::string::npos) continue;
+      write("bad_12_zstd_corrupt_frame.c4d", with_header(3, 2, bad));
+      break;
+    }
+  }
+  // Valid frames whose content is a damaged payload: one byte too many; more control vertices than
+  // vertices (the u32 after the header fields and the frame times).
+  write("bad_12_zstd_payload_trailing_byte.c4d", with_header(3, 2, zstd_compress(payload + "x")));
+  std::string controls = payload;
+  const std::size_t at = 16 + 8 * 7 + 8 * static_cast<std::size_t>(mv.frame_count);
+  for (std::size_t i = 0; i < 4; ++i) controls[at + i] = static_cast<char>(0xff);
+  write("bad_12_zstd_payload_too_many_controls.c4d", with_header(3, 2, zstd_compress(controls)));
+  write("bad_12_payload_too_many_controls.c4d", with_header(3, 0, controls));
 }
 
 // CompactError::Surface: every decoded vertex within the tolerance of its frame's input surface

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "contour4d/core/errors.h"
+#include "corpus_check.h"
 
 namespace c4d {
 namespace {
@@ -171,32 +172,9 @@ TEST(ContoursJson, ReadFileErrors) {
 
 //! Every file in tests/corpus/contours_json: bad_NN_*.json must fail with ErrorCode NN, good_* parse.
 TEST(ContoursJson, Corpus) {
-  const fs::path dir = fs::path(C4D_CORPUS_DIR) / "contours_json";
-  ASSERT_TRUE(fs::is_directory(dir)) << "corpus folder missing: " << dir;
-  int bad = 0, good = 0;
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  for (const fs::path& p : files) {
-    const std::string name = p.filename().string();
-    SCOPED_TRACE(name);
-    if (name.rfind("good_", 0) == 0) {
-      EXPECT_NO_THROW(read_contours_json(p));
-      ++good;
-    } else if (name.rfind("bad_", 0) == 0) {
-      const int expected = std::stoi(name.substr(4, 2));
-      try {
-        read_contours_json(p);
-        ADD_FAILURE() << "no error";
-      } catch (const Error& e) {
-        EXPECT_EQ(static_cast<int>(e.code()), expected) << e.what();
-        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << "message must name the file: " << e.what();
-      }
-      ++bad;
-    }
-  }
-  EXPECT_GE(bad, 15);
-  EXPECT_GE(good, 2);
+  const test::CorpusCounts n = test::check_corpus("contours_json", [](const fs::path& p) { read_contours_json(p); });
+  EXPECT_GE(n.bad, 15);
+  EXPECT_GE(n.good, 2);
 }
 
 }  // namespace

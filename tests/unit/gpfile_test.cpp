@@ -9,6 +9,7 @@
 #include <set>
 
 #include "contour4d/core/errors.h"
+#include "corpus_check.h"
 
 namespace c4d {
 namespace {
@@ -142,31 +143,8 @@ TEST(GpFile, EveryTruncatedPrefixFailsCleanly) {
 
 //! Every folder in tests/corpus/gpfile: bad_NN_* must fail with ErrorCode NN, good_* read.
 TEST(GpFile, Corpus) {
-  const fs::path dir = fs::path(C4D_CORPUS_DIR) / "gpfile";
-  ASSERT_TRUE(fs::is_directory(dir)) << "corpus folder missing: " << dir;
-  std::vector<fs::path> cases;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_directory()) cases.push_back(e.path());
-  std::sort(cases.begin(), cases.end());
-  int bad = 0;
-  for (const fs::path& p : cases) {
-    const std::string name = p.filename().string();
-    SCOPED_TRACE(name);
-    if (name.rfind("good_", 0) == 0) {
-      EXPECT_NO_THROW(read_gpfile(p));
-    } else if (name.rfind("bad_", 0) == 0) {
-      ++bad;
-      const int expected = std::stoi(name.substr(4, 2));
-      try {
-        read_gpfile(p);
-        ADD_FAILURE() << "no error";
-      } catch (const Error& e) {
-        EXPECT_EQ(static_cast<int>(e.code()), expected) << e.what();
-        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << "message must name the folder: " << e.what();
-      }
-    }
-  }
-  EXPECT_GE(bad, 10);
+  const test::CorpusCounts n = test::check_corpus("gpfile", [](const fs::path& p) { read_gpfile(p); }, /*folders=*/true);
+  EXPECT_GE(n.bad, 10);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 # Tests of the temporal stage (compact model, interpolation, glTF) and of the renderer.
 c4d_add_test(compact_test unit/compact_test.cpp)
+target_link_libraries(compact_test PRIVATE zstd::libzstd_shared)  # hand-made zstd frames for the model.c4d tests
 c4d_add_test(interpolate_test unit/interpolate_test.cpp)
 c4d_add_test(gltf_test unit/gltf_test.cpp)
 target_link_libraries(gltf_test PRIVATE TinyGLTF::TinyGLTF)
