@@ -1,6 +1,7 @@
 // One-frame surface (issue 3): time of reconstruct_frame for one frame of each phantom and of the
 // real bivme data; the counter `vertices/s` is output vertices per second (target ≥ 100,000 on one
-// core at the default edge length). `_nocheck` variants leave out the CGAL self-intersection test.
+// core at the default edge length). `_nocheck` variants leave out the CGAL self-intersection test;
+// `_fast_remesher` variants use our isotropic remeshing instead of CGAL's (SurfaceOptions::remesher).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -11,9 +12,11 @@
 
 namespace {
 
-void run(benchmark::State& state, const c4d::Sequence& seq, bool check) {
+void run(benchmark::State& state, const c4d::Sequence& seq, bool check,
+         c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal) {
   c4d::SurfaceOptions o;
   o.check_self_intersections = check;
+  o.remesher = engine;
   std::size_t vertices = 0;
   for (auto _ : state) {
     const c4d::TriangleMesh m = c4d::reconstruct_frame(seq, 0, o);
@@ -25,14 +28,15 @@ void run(benchmark::State& state, const c4d::Sequence& seq, bool check) {
       benchmark::Counter(static_cast<double>(vertices), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void phantom(benchmark::State& state, const std::string& name, bool oblique, bool check) {
+void phantom(benchmark::State& state, const std::string& name, bool oblique, bool check,
+             c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal) {
   c4d::PhantomOptions po;
   po.oblique = oblique;
   const c4d::Phantom ph = c4d::make_phantom(name, po);
-  run(state, ph.contours, check);
+  run(state, ph.contours, check, engine);
 }
 
-void bivme(benchmark::State& state, bool check) {
+void bivme(benchmark::State& state, bool check, c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal) {
   const std::string dir = std::string(C4D_DATA_DIR) + "/bivme-patient1/guidepoints";
   c4d::Sequence seq;
   try {
@@ -41,7 +45,7 @@ void bivme(benchmark::State& state, bool check) {
     state.SkipWithError(("cannot read " + dir + ": " + e.what()).c_str());
     return;
   }
-  run(state, seq, check);
+  run(state, seq, check, engine);
 }
 
 }  // namespace
@@ -55,6 +59,12 @@ BENCHMARK_CAPTURE(phantom, left_heart_es, std::string("left-heart-es"), false, t
 BENCHMARK_CAPTURE(phantom, torus, std::string("torus"), false, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(phantom, bifurcation, std::string("bifurcation"), false, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bivme, frame0, true)->Unit(benchmark::kMillisecond);
+// The same with SurfaceOptions::remesher = Fast (isotropic_remesh.h): the ratio to the rows above.
+BENCHMARK_CAPTURE(phantom, left_heart_ed_fast_remesher, std::string("left-heart-ed"), false, true, c4d::RemeshEngine::Fast)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(phantom, torus_fast_remesher, std::string("torus"), false, true, c4d::RemeshEngine::Fast)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(bivme, frame0_fast_remesher, true, c4d::RemeshEngine::Fast)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bivme, frame0_nocheck, false)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

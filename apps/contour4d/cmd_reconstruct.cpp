@@ -33,6 +33,7 @@ struct ReconstructArgs {
   bool vertical = false;
   bool fast = false;
   std::string tiling = "bands";
+  std::string remesher = "cgal";
 };
 
 nlohmann::json connections_json(const std::vector<Connection>& cs) {
@@ -66,6 +67,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   opt.surface.edge = a.edge;
   opt.surface.rows = a.fast;
   opt.surface.tiling = a.tiling == "delaunay" ? Tiling::Delaunay : Tiling::Bands;
+  opt.surface.remesher = a.remesher == "fast" ? RemeshEngine::Fast : RemeshEngine::Cgal;
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
   opt.morph.pin_spacing = a.pin_spacing;
@@ -85,7 +87,8 @@ int run_reconstruct(const ReconstructArgs& a) {
       {"stack_normal", {seq.normal.x, seq.normal.y, seq.normal.z}},
       {"options",
        {{"edge_mm", a.edge}, {"cap", a.cap}, {"method", a.method}, {"threshold", opt.surface.threshold},
-        {"fast", a.fast}, {"tiling", a.tiling}, {"pin_spacing", a.pin_spacing}, {"vertical_deformation", a.vertical}}},
+        {"fast", a.fast}, {"tiling", a.tiling}, {"remesher", a.remesher}, {"pin_spacing", a.pin_spacing},
+        {"vertical_deformation", a.vertical}}},
   };
   MeshSequence result;
   if (a.frame >= 0) {
@@ -211,6 +214,12 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
                   "surface between slices: bands (default: optimal bands, bridges at branchings) or delaunay (Lim et "
                   "al.'s constrained Delaunay of the projected slices with chordal-axis lifting points)")
       ->check(CLI::IsMember({"bands", "delaunay"}))
+      ->capture_default_str();
+  app->add_option("--remesher", args->remesher,
+                  "isotropic remeshing of the surface: cgal (default: CGAL's) or fast (ours, the same algorithm on "
+                  "flat arrays: about 2x faster per frame, slab accuracy within about 10% of cgal's either way, "
+                  "smallest angles not guaranteed)")
+      ->check(CLI::IsMember({"cgal", "fast"}))
       ->capture_default_str();
   app->add_flag("--fast", args->fast,
                "interpolated rows between slices instead of isotropic remeshing (CGAL) of every band: about 5x "

@@ -573,7 +573,8 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     if (pc.nonmanifold_edges == 0 && pc.nonmanifold_vertices == 0 && pc.misoriented_edges == 0) {
       RemeshOptions mo;
       mo.edge = opt.edge;
-      mo.iterations = opt.remesh_iterations;
+      mo.iterations = opt.remesher == RemeshEngine::Fast ? opt.fast_remesh_iterations : opt.remesh_iterations;
+      mo.engine = opt.remesher;
       mo.split_constraints = false;
       remesh_isotropic(part, constrained, part_fixed, mo);
     }
@@ -698,6 +699,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     RemeshOptions mo;
     mo.edge = target;
     mo.iterations = opt.final_remesh_iterations;
+    mo.engine = opt.remesher;
     mo.split_constraints = false;
     remesh_isotropic(mesh, constrained, fixed, mo);
     flip_edges_delaunay(mesh, constrained);

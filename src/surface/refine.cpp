@@ -15,6 +15,7 @@
 #include <unordered_set>
 
 #include "contour4d/surface/angle_repair.h"
+#include "contour4d/surface/isotropic_remesh.h"
 
 namespace c4d {
 namespace {
@@ -27,6 +28,9 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 void remesh_isotropic(TriangleMesh& mesh, std::vector<std::array<std::uint32_t, 2>>& constrained,
                       std::vector<char>& fixed, const RemeshOptions& options) {
+  if (options.engine == RemeshEngine::Fast && !options.split_constraints &&
+      remesh_isotropic_fast(mesh, constrained, fixed, options.edge, options.iterations))
+    return;
   Mesh sm;
   std::vector<Mesh::Vertex_index> vid;
   vid.reserve(mesh.positions.size());

@@ -7,6 +7,7 @@ target_sources(contour4d PRIVATE
   surface/smoothing.cpp
   surface/fairing.cpp
   surface/refine.cpp
+  surface/isotropic_remesh.cpp
   surface/angle_repair.cpp
   surface/surface_projector.cpp
   surface/mesh_check.cpp

@@ -52,4 +52,18 @@ TEST(Cli, MissingInputIsNamed) {
   EXPECT_NE(r.out.find("/nonexistent/contours.json"), std::string::npos) << r.out;
 }
 
+TEST(Cli, RemesherOptionReachesTheReport) {
+  const std::string dir = ::testing::TempDir() + "c4d-cli-remesher";
+  ASSERT_EQ(run("phantom bifurcation -o " + dir + "/ph").code, 0);
+  const Result r = run("reconstruct " + dir + "/ph/contours.json --frame 0 --remesher fast -o " + dir + "/out");
+  EXPECT_EQ(r.code, 0) << r.out;
+  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen((dir + "/out/report.json").c_str(), "r"), std::fclose);
+  ASSERT_TRUE(f);
+  std::string report;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), f.get())) report += buf.data();
+  EXPECT_NE(report.find("\"remesher\": \"fast\""), std::string::npos);
+  EXPECT_EQ(run("reconstruct " + dir + "/ph/contours.json --remesher bogus -o " + dir + "/never").code, 2);
+}
+
 }  // namespace
