@@ -115,7 +115,7 @@ struct Reader {
       v |= static_cast<std::uint64_t>(b & 0x7f) << shift;
       if ((b & 0x80) == 0) return v;
     }
-    throw IoError(ErrorCode::Parse, {name}, "overlong varint", "the file is damaged: run `contour4d pack` again");
+    damaged(name, "overlong varint");
   }
 };
 
@@ -206,7 +206,7 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
                   "the file is truncated or padded: run `contour4d pack` again");
   const std::string_view stored = bytes.substr(kHeader);
   if (fnv1a64(stored) != sum)
-    throw IoError(ErrorCode::Parse, {name}, "checksum mismatch", "the file is damaged: run `contour4d pack` again");
+    damaged(name, "checksum mismatch");
   Buffer decompressed;
   if (flags & kFlagZstd) decompressed = decompress_payload(stored, name);
   const std::string_view payload = (flags & kFlagZstd) ? std::string_view(decompressed.data.get(), decompressed.size) : stored;
@@ -226,14 +226,14 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
   for (std::uint32_t f = 0; f < m.frame_count; ++f) m.times_ms.push_back(r.f64());
   const std::uint32_t nc = r.u32();
   if (nc > m.vertex_count)
-    throw IoError(ErrorCode::Parse, {name}, "more control vertices than vertices", "the file is damaged: run `contour4d pack` again");
+    damaged(name, "more control vertices than vertices");
   std::uint64_t id = 0;
   for (std::uint32_t i = 0; i < nc; ++i) {
     const std::uint64_t gap = r.varint();  // checked before adding, so a huge gap cannot wrap around
     if (gap >= m.vertex_count) damaged(name, "control vertex id out of range");
     id = (i == 0 ? 0 : id + 1) + gap;
     if (id >= m.vertex_count)
-      throw IoError(ErrorCode::Parse, {name}, "control vertex id out of range", "the file is damaged: run `contour4d pack` again");
+      damaged(name, "control vertex id out of range");
     m.control.push_back(static_cast<std::uint32_t>(id));
   }
   m.indices = r.block();
@@ -241,7 +241,7 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
   m.motion = r.block();
   for (std::uint32_t f = 0; f < m.frame_count; ++f) m.corrections.push_back(r.block());
   if (r.pos != payload.size())
-    throw IoError(ErrorCode::Parse, {name}, "trailing bytes after the last frame", "the file is damaged: run `contour4d pack` again");
+    damaged(name, "trailing bytes after the last frame");
   return m;
 }
 

@@ -574,15 +574,13 @@ struct Remesher {
       }
       if (frac <= 0.02) x[v] = start;
     }
-    std::vector<Vec3> moved = x;
     // Projection: start from the vertex's last closest input triangle, else from a face's.
     for (std::size_t v = 0; v < nv; ++v) {
       if (vert_dead[v] || locked[v]) continue;
       std::int32_t& hint = vert_hint[v];
       if (hint == kNone) hint = face_hint[static_cast<std::size_t>(face_of(out[v]))];
-      moved[v] = ref->project(moved[v], hint);
+      x[v] = ref->project(x[v], hint);
     }
-    x = std::move(moved);
     for (std::size_t g = 0; g < f.size(); ++g) {
       if (face_dead[g]) continue;
       for (std::uint32_t v : f[g])
