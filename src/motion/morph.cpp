@@ -325,6 +325,26 @@ void hold_next_to(const Bands& b0, const std::set<int>& unmatched, std::set<int>
     }
 }
 
+// MorphOptions::saddle_curvature: the height ranges (along the stack normal) of the bands beside each slice
+// whose contour count in frame t differs from frame 0's, both non-zero (split or merged contours: the
+// surface forms a saddle there that frame 0's vertex density does not follow).
+std::vector<std::pair<double, double>> saddle_bands(const Sequence& seq, const Bands& b0, int t) {
+  std::map<int, std::size_t> before;
+  for (const Slice& s : seq.frames.front().slices) before[s.id] = s.contours.size();
+  std::vector<std::pair<double, double>> out;
+  const std::vector<int>& ids = b0.slice_ids;
+  for (const Slice& s : seq.frames[static_cast<std::size_t>(t)].slices) {
+    const auto it = before.find(s.id);
+    if (it == before.end() || it->second == 0 || s.contours.empty() || it->second == s.contours.size()) continue;
+    const auto k = static_cast<std::size_t>(std::find(ids.begin(), ids.end(), s.id) - ids.begin());
+    if (k == ids.size()) continue;
+    const double lo = k > 0 ? b0.heights[k - 1] : -std::numeric_limits<double>::infinity();
+    const double hi = k + 1 < ids.size() ? b0.heights[k + 1] : std::numeric_limits<double>::infinity();
+    out.push_back({lo, hi});
+  }
+  return out;
+}
+
 // A chain sliding in its plane fixes how many vertices the bands beside it hold. Where a band changed
 // shape unevenly since frame 0 (its height, from its area on the frame's own surface over its width,
 // scaled more than `limit` × its width, the contours' perimeter ratio, or the reverse), those vertices
@@ -812,6 +832,18 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
       //    Vertices on a contour move along it (they were put there before).
       const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
+      // Curvature weights of the umbrella (MorphOptions::saddle_curvature) in the bands beside slices whose
+      // contour count differs from frame 0's (saddles of split or merged contours).
+      double curv_dev = opt.saddle_curvature * median_edge;
+      std::vector<char> saddle_zone(nv, 0);
+      if (curv_dev > 0) {
+        const std::vector<std::pair<double, double>> zones = saddle_bands(seq, bands, static_cast<int>(t));
+        for (std::size_t i = 0; i < nv; ++i) {
+          const double h = dot(x[i], seq.normal);
+          for (const auto& [lo, hi] : zones) saddle_zone[i] = saddle_zone[i] || (h >= lo && h <= hi);
+        }
+        if (zones.empty()) curv_dev = 0;
+      }
       auto relax = [&](int rounds, int sweeps) {
         for (int r = 0; r < rounds; ++r) {
           std::vector<Vec3> vel(nv, Vec3{});
@@ -830,9 +862,15 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
                 // frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone can
                 // tangle under strong compression, so the default is the umbrella alone.
                 Vec3 c{}, g{}, mid{}, sp{};
+                double wsum = 0;
                 for (std::size_t k = 0; k < m; ++k) {
                   const Vec3 e = x[ring[k]] - xi;
-                  c += e;
+                  double w = 1.0;
+                  // Chord height of the edge over the surface, from the two normals (L²/8R on a sphere).
+                  if (curv_dev > 0 && saddle_zone[i])
+                    w += (std::abs(dot(e, n)) + std::abs(dot(e, normals[ring[k]]))) / (8.0 * curv_dev);
+                  wsum += w;
+                  c += w * e;
                   if (opt.spring_weight != 0) {
                     const double len = norm(e);
                     if (len > 0) sp += std::clamp((len - scale * ring_rest[ring_start[i] + k]) / len, -0.3, 0.3) * e;
@@ -850,6 +888,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
                   }
                 }
                 const double inv = 1.0 / static_cast<double>(m);
+                if (wsum != static_cast<double>(m)) c = (static_cast<double>(m) / wsum) * c;  // weighted mean (saddle zones)
                 Vec3 d = (opt.spring_weight * sp + (1.0 - opt.spring_weight) * c) * inv;
                 if (opt.shape_weight > 0) {
                   const double no = static_cast<double>(opp_start[i + 1] - opp_start[i]);
@@ -887,6 +926,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       int sweep_factor = 1;
       for (int attempt = 0; attempt <= std::max(0, opt.retry_attempts); ++attempt) {
         if (attempt >= 1) {
+          curv_dev = 0;
           sweep_factor = attempt == 1 ? std::max(1, opt.retry_sweep_factor) : 2 * sweep_factor;
           x = x_start;
           normals = normals_start;

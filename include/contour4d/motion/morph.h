@@ -89,6 +89,11 @@ struct MorphOptions {
                                            //!< triangles below 25°, against none)
   double relax_momentum = 0.9;     //!< heavy-ball momentum of the sweeps (0: plain Jacobi); speeds up the slow,
                                    //!< smooth modes about tenfold, so far fewer sweeps reach the same state
+  double saddle_curvature = 0.05;  //!< relaxation, in the bands beside a slice whose contours split or merged since frame 0:
+                                   //!< umbrella weights 1 + h / (this × median edge), h the edge's chord height over the
+                                   //!< surface (from the normals at its ends), so edges across the saddle shorten and the
+                                   //!< vertices gather where the surface bends (left heart ES: max distance to the truth
+                                   //!< 0.98 → 0.38 mm); 0: off. Not used in a retry (retry_min_angle_deg)
   double spring_weight = 0.0;      //!< relaxation: share of springs (frame-0 edge lengths) against the umbrella
   double shape_weight = 0.5;       //!< relaxation: share of the equilateral pull (each triangle draws the vertex towards
                                    //!< the apex of the equilateral triangle on its opposite edge) against the umbrella;
