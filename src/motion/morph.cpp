@@ -310,6 +310,7 @@ struct Bands {
   std::vector<int> slice_ids;   // the slices at those heights
   std::vector<double> areas;    // band_areas of frame 0's mesh
   std::map<int, double> perimeters;  // slice_perimeters of frame 0
+  std::map<int, std::size_t> counts;  // contours per slice id of frame 0
 };
 
 // Next to a slice whose contours split, merge, appear or vanish (`unmatched`), the surface must move
@@ -329,13 +330,11 @@ void hold_next_to(const Bands& b0, const std::set<int>& unmatched, std::set<int>
 // whose contour count in frame t differs from frame 0's, both non-zero (split or merged contours: the
 // surface forms a saddle there that frame 0's vertex density does not follow).
 std::vector<std::pair<double, double>> saddle_bands(const Sequence& seq, const Bands& b0, int t) {
-  std::map<int, std::size_t> before;
-  for (const Slice& s : seq.frames.front().slices) before[s.id] = s.contours.size();
   std::vector<std::pair<double, double>> out;
   const std::vector<int>& ids = b0.slice_ids;
   for (const Slice& s : seq.frames[static_cast<std::size_t>(t)].slices) {
-    const auto it = before.find(s.id);
-    if (it == before.end() || it->second == 0 || s.contours.empty() || it->second == s.contours.size()) continue;
+    const auto it = b0.counts.find(s.id);
+    if (it == b0.counts.end() || it->second == 0 || s.contours.empty() || it->second == s.contours.size()) continue;
     const auto k = static_cast<std::size_t>(std::find(ids.begin(), ids.end(), s.id) - ids.begin());
     if (k == ids.size()) continue;
     const double lo = k > 0 ? b0.heights[k - 1] : -std::numeric_limits<double>::infinity();
@@ -667,6 +666,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     }
     bands.areas = band_areas(frame0.positions, frame0.triangles, seq.normal, bands.heights);
     bands.perimeters = slice_perimeters(seq.frames.front());
+    for (const Slice& s0 : seq.frames.front().slices) bands.counts[s0.id] = s0.contours.size();
   }
   std::vector<std::vector<std::uint32_t>> incident(nv);
   for (std::size_t f = 0; f < frame0.triangles.size(); ++f)
@@ -842,7 +842,6 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
           const double h = dot(x[i], seq.normal);
           for (const auto& [lo, hi] : zones) saddle_zone[i] = saddle_zone[i] || (h >= lo && h <= hi);
         }
-        if (zones.empty()) curv_dev = 0;
       }
       auto relax = [&](int rounds, int sweeps) {
         for (int r = 0; r < rounds; ++r) {
@@ -862,12 +861,13 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
                 // frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone can
                 // tangle under strong compression, so the default is the umbrella alone.
                 Vec3 c{}, g{}, mid{}, sp{};
+                const bool weighted = curv_dev > 0 && saddle_zone[i];
                 double wsum = 0;
                 for (std::size_t k = 0; k < m; ++k) {
                   const Vec3 e = x[ring[k]] - xi;
                   double w = 1.0;
                   // Chord height of the edge over the surface, from the two normals (L²/8R on a sphere).
-                  if (curv_dev > 0 && saddle_zone[i])
+                  if (weighted)
                     w += (std::abs(dot(e, n)) + std::abs(dot(e, normals[ring[k]]))) / (8.0 * curv_dev);
                   wsum += w;
                   c += w * e;
@@ -888,7 +888,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
                   }
                 }
                 const double inv = 1.0 / static_cast<double>(m);
-                if (wsum != static_cast<double>(m)) c = (static_cast<double>(m) / wsum) * c;  // weighted mean (saddle zones)
+                if (weighted) c = (static_cast<double>(m) / wsum) * c;  // the weighted mean, as m × mean (saddle zones)
                 Vec3 d = (opt.spring_weight * sp + (1.0 - opt.spring_weight) * c) * inv;
                 if (opt.shape_weight > 0) {
                   const double no = static_cast<double>(opp_start[i + 1] - opp_start[i]);
