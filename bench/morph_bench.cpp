@@ -28,12 +28,13 @@ double peak_rss_mb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
-void run(benchmark::State& state, c4d::MorphMethod method) {
+void run(benchmark::State& state, c4d::MorphMethod method, bool biharmonic = false) {
   const int threads = static_cast<int>(state.range(0));
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   const c4d::Sequence& seq = left_heart_cycle().contours;
   c4d::Reconstruct4DOptions opt;
   opt.morph.method = method;
+  opt.morph.biharmonic = biharmonic;
   std::size_t vertices = 0;
   for (auto _ : state) {
     const c4d::MeshSequence m = c4d::reconstruct_4d(seq, opt);
@@ -55,8 +56,11 @@ void run(benchmark::State& state, c4d::MorphMethod method) {
 
 void BM_LeftHeartCycle_RbfProject(benchmark::State& s) { run(s, c4d::MorphMethod::RbfProject); }
 void BM_LeftHeartCycle_PaperRbf(benchmark::State& s) { run(s, c4d::MorphMethod::Rbf); }
+// MorphOptions::biharmonic (--biharmonic): frames that keep the previous frame's contour topology by one solve.
+void BM_LeftHeartCycle_Biharmonic(benchmark::State& s) { run(s, c4d::MorphMethod::RbfProject, true); }
 
 BENCHMARK(BM_LeftHeartCycle_RbfProject)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_LeftHeartCycle_Biharmonic)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_LeftHeartCycle_PaperRbf)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace

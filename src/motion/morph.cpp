@@ -11,9 +11,13 @@
 // "Laplacian Surface Editing", 2004) — its matrix depends only on the connectivity, so it is
 // factored once for the whole sequence — followed by tangential relaxation that keeps triangle
 // quality (vertices move within the surface, so the contours stay on it).
+// With MorphOptions::biharmonic, a frame that keeps the previous frame's contour topology is instead the
+// previous mesh plus one thin-plate (biharmonic) displacement that puts its slice sections on the new
+// contours (the "global Laplacian solve whose factorisation is reused"), guarded by the quality checks.
 #include "contour4d/motion/morph.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -608,6 +612,139 @@ void vertical_predeformation(const Sequence& seq, const std::vector<Triangle>& t
   }
 }
 
+// MorphOptions::biharmonic. Where every slice keeps frame t−1's contours (the same count, each matched
+// one-to-one by the similarity index), the mesh's section on each slice plane (the points where its edges
+// cross it) is mapped onto frame t's contours: each section point goes to its closest point on frame t−1's
+// contour and on through that contour's match onto frame t's (Fig. 7). The displacement d then minimises
+// Σ|L d|² + w Σ_k |(1 − s_k) d_a + s_k d_b − δ_k|² (the section point k on edge (a, b) at s_k, δ_k its
+// move): smooth over the whole mesh, the sections onto the new contours. The system keeps its pattern, so
+// its ordering is computed once; each frame costs one numeric factorisation.
+struct BiharmonicStep {
+  Eigen::SimplicialLDLT<SparseMatrix> solver;
+  bool analysed = false;
+  std::vector<double> factored_for;  // the constraints' (a, b, s) of the factorised system
+  double weight = 1e4;  // w, against LᵀL's diagonal of about 40
+
+  // y = x + d; false (y untouched) when a slice does not qualify or the system fails.
+  bool run(const Sequence& seq, int t, const std::vector<Vec3>& x, const std::vector<std::array<std::uint32_t, 2>>& edges,
+           const SparseMatrix& LtL, double threshold, std::vector<Vec3>& y) {
+    const Frame& prev = seq.frames[static_cast<std::size_t>(t - 1)];
+    const Frame& cur = seq.frames[static_cast<std::size_t>(t)];
+    if (prev.slices.size() != cur.slices.size()) return false;
+    struct Constraint {
+      std::uint32_t a, b;
+      double s;
+      Vec3 delta;
+    };
+    std::vector<Constraint> cons;
+    std::vector<double> h(x.size());
+    for (const Slice& ps : prev.slices) {
+      const Slice* cs = find_slice(cur, ps.id);
+      if (!cs || cs->contours.size() != ps.contours.size() || ps.contours.empty()) return false;
+      const Plane pl = slice_plane(seq, ps);
+      std::vector<std::vector<Vec2>> A, B;
+      for (const Contour& c : ps.contours) A.push_back(flatten(pl, c.points));
+      for (const Contour& c : cs->contours) B.push_back(flatten(pl, c.points));
+      std::vector<ContourMatch> maps(A.size());
+      for (std::size_t i = 0; i < A.size(); ++i) {
+        int partner = -1, count = 0;
+        for (std::size_t j = 0; j < B.size(); ++j)
+          if (contour_similarity(A[i], B[j]) > threshold) {
+            partner = static_cast<int>(j);
+            ++count;
+          }
+        if (count != 1) return false;
+        int back = 0;
+        for (std::size_t k = 0; k < A.size(); ++k) back += contour_similarity(A[k], B[static_cast<std::size_t>(partner)]) > threshold;
+        if (back != 1) return false;
+        maps[i] = match_contour(A[i], B[static_cast<std::size_t>(partner)]);
+        if (maps[i].targets.size() != A[i].size()) return false;
+      }
+      // Vertices within 1e-9 mm of the plane lie on it (frame 0's contour chains): each is one section point.
+      // Otherwise, each edge with its ends on either side gives one.
+      for (std::size_t v = 0; v < x.size(); ++v) {
+        h[v] = dot(x[v] - pl.origin, pl.normal);
+        if (std::abs(h[v]) <= 1e-9) h[v] = 0;
+      }
+      std::size_t found = 0;
+      std::vector<std::array<std::uint32_t, 2>> crossing;
+      for (std::size_t v = 0; v < x.size(); ++v)
+        if (h[v] == 0) crossing.push_back({static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(v)});
+      for (const auto& e : edges)
+        if ((h[e[0]] > 0 && h[e[1]] < 0) || (h[e[0]] < 0 && h[e[1]] > 0)) crossing.push_back(e);
+      for (const auto& [a, b] : crossing) {
+        const double s = a == b ? 0.0 : h[a] / (h[a] - h[b]);
+        const Vec3 p = x[a] + s * (x[b] - x[a]);
+        const Vec2 q = to_plane(pl, p);
+        double best = std::numeric_limits<double>::infinity();
+        std::size_t bc = 0, bk = 0;
+        double bf = 0;
+        for (std::size_t c = 0; c < A.size(); ++c) {
+          const std::vector<Vec2>& poly = A[c];
+          for (std::size_t k = 0; k < poly.size(); ++k) {
+            const Vec2 u = poly[k], e = poly[(k + 1) % poly.size()] - u;
+            const double l2 = dot(e, e);
+            const double f = l2 > 0 ? std::clamp(dot(q - u, e) / l2, 0.0, 1.0) : 0.0;
+            const double d = norm(q - (u + f * e));
+            if (d < best) best = d, bc = c, bk = k, bf = f;
+          }
+        }
+        if (!(best < 1.0)) return false;  // the section is not on frame t−1's contours
+        const std::vector<Vec2>& T = maps[bc].targets;
+        const Vec2 target = (1.0 - bf) * T[bk] + bf * T[(bk + 1) % T.size()];
+        cons.push_back({a, b, s, from_plane(pl, target) - p});
+        ++found;
+      }
+      if (found == 0) return false;
+    }
+    // The system depends on the section's edges and their parameters only: where they are those of the last
+    // factorised frame (sections through vertices on the planes, which stay there), it is reused.
+    std::vector<double> signature;
+    for (const Constraint& c : cons) signature.insert(signature.end(), {double(c.a), double(c.b), c.s});
+    const bool refactor = !analysed || signature != factored_for;
+    SparseMatrix M;
+    if (refactor) M = LtL;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(x.size()), 3);
+    for (const Constraint& c : cons) {
+      const double wa = 1.0 - c.s, wb = c.s;
+      const int ia = static_cast<int>(c.a), ib = static_cast<int>(c.b);
+      if (refactor) {
+        M.coeffRef(ia, ia) += weight * wa * wa;
+        if (ia != ib) {
+          M.coeffRef(ib, ib) += weight * wb * wb;
+          M.coeffRef(ia, ib) += weight * wa * wb;
+          M.coeffRef(ib, ia) += weight * wa * wb;
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        const double dk = k == 0 ? c.delta.x : k == 1 ? c.delta.y : c.delta.z;
+        rhs(ia, k) += weight * wa * dk;
+        if (ia != ib) rhs(ib, k) += weight * wb * dk;
+      }
+    }
+    if (refactor) {
+      if (!analysed) {
+        solver.analyzePattern(M);
+        analysed = true;
+      }
+      solver.factorize(M);
+      factored_for = signature;
+      if (solver.info() != Eigen::Success) {
+        factored_for.clear();
+        return false;
+      }
+    }
+    const Eigen::MatrixXd d = solver.solve(rhs);
+    if (solver.info() != Eigen::Success) return false;
+    y.resize(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const auto r = static_cast<Eigen::Index>(i);
+      y[i] = x[i] + Vec3{d(r, 0), d(r, 1), d(r, 2)};
+    }
+    return true;
+  }
+};
+
 }  // namespace
 
 std::vector<SubMeshLifetime> submesh_lifetimes(const Sequence& seq) {
@@ -640,6 +777,15 @@ std::vector<SubMeshLifetime> submesh_lifetimes(const Sequence& seq) {
 
 MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, const std::vector<TriangleMesh>& surfaces,
                             const MorphOptions& opt, MorphReport* report) {
+  if (opt.method == MorphMethod::RbfProject && surfaces.size() != seq.frames.size())
+    throw SolverError(ErrorCode::Internal, {}, "morph_sequence: RbfProject needs one surface per frame");
+  return morph_sequence(seq, frame0, [&surfaces](std::size_t t) -> const TriangleMesh& { return surfaces[t]; }, opt,
+                        report);
+}
+
+MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
+                            const std::function<const TriangleMesh&(std::size_t)>& surface_of, const MorphOptions& opt,
+                            MorphReport* report) {
   const std::size_t frames = seq.frames.size();
   MeshSequence out;
   out.triangles = frame0.triangles;
@@ -650,8 +796,6 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   rep.frames.assign(frames, {});
   rep.submeshes = submesh_lifetimes(seq);
   const bool project = opt.method == MorphMethod::RbfProject;
-  if (project && surfaces.size() != frames)
-    throw SolverError(ErrorCode::Internal, {}, "morph_sequence: RbfProject needs one surface per frame");
 
   const std::size_t nv = frame0.positions.size();
   const auto nb = vertex_neighbours(nv, frame0.triangles);
@@ -712,6 +856,11 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
   // it is factored again only when that set changes (topology events), else reused.
   Eigen::SimplicialLDLT<SparseMatrix> solver;
   std::vector<char> factored_for;
+  BiharmonicStep biharmonic;  // MorphOptions::biharmonic
+  std::vector<std::array<std::uint32_t, 2>> mesh_edges;
+  for (std::size_t i = 0; i < nv; ++i)
+    for (std::uint32_t j : nb[i])
+      if (i < j) mesh_edges.push_back({static_cast<std::uint32_t>(i), j});
   const double pin_weight = 1e8;
   std::vector<Vec3> carry = frame0.positions;
 
@@ -724,9 +873,24 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     std::set<int> unmatched, held;         // held: slices whose chains do not slide in the relaxation
     match_chains(seq, chains, x, static_cast<int>(t), opt, pin_spacing, slide_spacing, matched, lines, unmatched, fr,
                  rep.events, counts);
+    if (project && opt.biharmonic) {
+      // Every slice keeps frame t−1's contours: the biharmonic displacement, if the triangles stay good.
+      std::vector<Vec3> y;
+      if (biharmonic.run(seq, static_cast<int>(t), x, mesh_edges, LtL, opt.threshold, y)) {
+        const std::size_t crossings = count_self_intersections(TriangleMesh{y, frame0.triangles});
+        const FrameQuality q = frame_quality(y, frame0.triangles, crossings);
+        if (q.crossings == 0 && q.worst >= opt.retry_min_angle_deg && q.good >= opt.retry_min_good_share &&
+            std::all_of(y.begin(), y.end(), [](const Vec3& p) { return is_finite(p); })) {
+          fr.biharmonic = true;
+          carry = y;
+          out.positions.push_back(std::move(y));
+          continue;
+        }
+      }
+    }
     if (project && slide_spacing > 0) {
       hold_next_to(bands, unmatched, held);
-      hold_uneven_bands(bands, surfaces[t], seq.frames[t], seq.normal, opt.slide_anisotropy, held);
+      hold_uneven_bands(bands, surface_of(t), seq.frames[t], seq.normal, opt.slide_anisotropy, held);
     }
     std::vector<std::pair<std::uint32_t, Vec3>> pins;
     for (const ChainTarget& m : matched)
@@ -794,7 +958,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
     if (project) {
       // 2. Laplacian-regularised projection onto the frame's own surface; pinned vertices held on
       //    their contour points.
-      const SurfaceProjector surface(surfaces[t]);
+      const SurfaceProjector surface(surface_of(t));
       const Projector proj{surface, {}};
       if (pinned != factored_for) {
         SparseMatrix W(static_cast<int>(nv), static_cast<int>(nv));
@@ -831,7 +995,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
       fr.projection_max = mx;
       // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
       //    Vertices on a contour move along it (they were put there before).
-      const double scale = std::sqrt(surface_area(surfaces[t]) / std::max(1e-12, surface_area(frame0)));
+      const double scale = std::sqrt(surface_area(surface_of(t)) / std::max(1e-12, surface_area(frame0)));
       // Curvature weights of the umbrella (MorphOptions::saddle_curvature) in the bands beside slices whose
       // contour count differs from frame 0's (saddles of split or merged contours).
       double curv_dev = opt.saddle_curvature * median_edge;

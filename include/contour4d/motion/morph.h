@@ -3,6 +3,7 @@
 //! \brief 4D morphing: the frame-0 mesh carried through every frame with the same vertices and
 //! triangles (Lim et al., "4D Morphing of the Heart Model"; Miara et al. §III.E).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,14 @@ struct MorphOptions {
                                    //!< the apex of the equilateral triangle on its opposite edge) against the umbrella;
                                    //!< undoes the anisotropy that contraction leaves and the umbrella keeps
                                    //!< (uniform Laplacian); springs keep frame 0's shapes but can tangle
+  bool biharmonic = false;         //!< RbfProject: a frame whose every contour matches one of frame 0's contour chains
+                                   //!< one-to-one (no split, merge, appearance or vanishing on any slice in this frame
+                                   //!< or the next) is frame t−1's mesh plus the biharmonic displacement (Σ|L d|²
+                                   //!< minimal, uniform Laplacian) that puts every chain vertex on its matched point of
+                                   //!< the contour (Fig. 7): one factorisation serves all such frames, so they cost a
+                                   //!< back-substitution instead of a projection and relaxation. A frame that then has an
+                                   //!< angle below retry_min_angle_deg, fewer than retry_min_good_share of its angles in
+                                   //!< 40–80° or crossing triangles is done the standard way. Off by default
 };
 
 //! A 2D contour topology change on one slice between two frames.
@@ -130,6 +139,7 @@ struct MorphFrameReport {
   double fit_max_before = 0;   //!< contour_fit: largest contour-sample distance to the mesh before it (mm)
   double fit_max_after = 0;    //!< the same after it (equal to fit_max_before when nothing moved)
   bool redone = false;         //!< the frame was done again (MorphOptions::retry_min_angle_deg)
+  bool biharmonic = false;     //!< the frame is the previous one plus a biharmonic displacement (MorphOptions::biharmonic)
   double projection_max = 0;   //!< max distance (mm) from the frame's surface before the final projection
   double projection_mean = 0;  //!< mean of the same
 };
@@ -146,6 +156,12 @@ struct MorphReport {
 //! \throw SolverError when a frame cannot be fitted.
 MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, const std::vector<TriangleMesh>& surfaces,
                             const MorphOptions& options = {}, MorphReport* report = nullptr);
+
+//! The same, with frame t's own surface given by `surface(t)` when it is first needed (MorphOptions::biharmonic
+//! frames need none); called from the calling thread only, frames in increasing order.
+MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
+                            const std::function<const TriangleMesh&(std::size_t)>& surface, const MorphOptions& options = {},
+                            MorphReport* report = nullptr);
 
 //! Sub-mesh lifetimes from the contour counts of each slice over the frames.
 std::vector<SubMeshLifetime> submesh_lifetimes(const Sequence& seq);
