@@ -217,7 +217,8 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_flag("--biharmonic", args->biharmonic,
                 "frames whose contours all match frame 0's one-to-one follow them by a biharmonic displacement of the "
                 "previous frame (one factorisation for all; much faster), unless that leaves an angle below 25 deg, "
-                "fewer than 85% of angles in 40-80 deg or crossing triangles; other frames as usual");
+                "fewer than 85% of angles in 40-80 deg or crossing triangles; other frames as usual. Opt-in: on biv-me "
+                "(strong basal contraction) the frames that fall back afterwards fail the quality targets");
   app->add_option("--tiling", args->tiling,
                   "surface between slices: bands (default: optimal bands, bridges at branchings) or delaunay (Lim et "
                   "al.'s constrained Delaunay of the projected slices with chordal-axis lifting points)")
