@@ -127,7 +127,7 @@ int run_reconstruct(const ReconstructArgs& a) {
                         {"intersecting_pairs_after_untangling", mf.intersecting_pairs},
                         {"projection_mean_mm", mf.projection_mean},
                         {"projection_max_mm", mf.projection_max},
-                        {"surface", f > 0 && mf.biharmonic ? nlohmann::json() : surface_json(rr.surfaces[f])}});
+                        {"surface", mf.biharmonic ? nlohmann::json() : surface_json(rr.surfaces[f])}});
     }
     report["frames"] = frames;
     nlohmann::json events = nlohmann::json::array();
@@ -215,8 +215,8 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
                 "where a slice's contours split or merge between frames, first apply Lim et al.'s sine-shaped "
                 "vertical deformation centred on the ridge (eq. 10, Table 1), then match and deform");
   app->add_flag("--biharmonic", args->biharmonic,
-                "frames whose contours all match frame 0's one-to-one follow them by a biharmonic displacement of the "
-                "previous frame (one factorisation for all; much faster), unless that leaves an angle below 25 deg, "
+                "frames whose contours all match the previous frame's one-to-one follow them by a biharmonic "
+                "displacement of the previous mesh (one sparse solve; much faster), unless that leaves an angle below 25 deg, "
                 "fewer than 85% of angles in 40-80 deg or crossing triangles; other frames as usual. Opt-in: on biv-me "
                 "(strong basal contraction) the frames that fall back afterwards fail the quality targets");
   app->add_option("--tiling", args->tiling,

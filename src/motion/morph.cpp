@@ -205,6 +205,21 @@ Vec3 closest_on_loop(const std::vector<Vec3>& loop, Vec3 q, std::int32_t& hint) 
 // fills `target` for every vertex of a matched chain and `lines` with the matched contours. Reports
 // slices whose contour count changed; `unmatched` gets them, those changing into the next frame, and
 // those with a chain left without partner.
+// The contour j that contour i matches one-to-one: i's only partner over the threshold is j, and j's only
+// partner is i (sim[i][j]: similarity index, eq. 5); -1 when there is none.
+int one_to_one_partner(const std::vector<std::vector<double>>& sim, std::size_t i, double threshold) {
+  int partner = -1, count = 0;
+  for (std::size_t j = 0; j < sim[i].size(); ++j)
+    if (sim[i][j] > threshold) {
+      partner = static_cast<int>(j);
+      ++count;
+    }
+  if (count != 1) return -1;
+  int back = 0;
+  for (const std::vector<double>& row : sim) back += row[static_cast<std::size_t>(partner)] > threshold;
+  return back == 1 ? partner : -1;
+}
+
 void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const std::vector<Vec3>& x, int frame,
                   const MorphOptions& opt, double pin_spacing, double slide_spacing, std::vector<ChainTarget>& targets,
                   std::vector<std::vector<Vec3>>& lines, std::set<int>& unmatched, MorphFrameReport& fr,
@@ -247,20 +262,8 @@ void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const s
     for (std::size_t i = 0; i < a.size(); ++i)
       for (std::size_t j = 0; j < b.size(); ++j) sim[i][j] = contour_similarity(a[i], b[j]);
     for (std::size_t i = 0; i < a.size(); ++i) {
-      // One-to-one: i's only partner over the threshold is j, and j's only partner is i.
-      int partner = -1, count = 0;
-      for (std::size_t j = 0; j < b.size(); ++j)
-        if (sim[i][j] > opt.threshold) {
-          partner = static_cast<int>(j);
-          ++count;
-        }
-      if (count != 1) {
-        unmatched.insert(id);
-        continue;
-      }
-      int back = 0;
-      for (std::size_t k = 0; k < a.size(); ++k) back += sim[k][static_cast<std::size_t>(partner)] > opt.threshold;
-      if (back != 1) {
+      const int partner = one_to_one_partner(sim, i, opt.threshold);
+      if (partner < 0) {
         unmatched.insert(id);
         continue;
       }
@@ -429,6 +432,12 @@ struct FrameQuality {
 FrameQuality frame_quality(const std::vector<Vec3>& x, const std::vector<Triangle>& tris, std::size_t crossings) {
   const AngleQuality q = angle_quality(TriangleMesh{x, tris});
   return {crossings, q.min_angle_deg, q.pct_40_80 / 100.0};
+}
+
+// A frame needs no retry (and a biharmonic frame is kept): no crossings, no angle below retry_min_angle_deg,
+// at least retry_min_good_share of its angles in 40–80°.
+bool acceptable(const FrameQuality& q, const MorphOptions& opt) {
+  return q.crossings == 0 && q.worst >= opt.retry_min_angle_deg && q.good >= opt.retry_min_good_share;
 }
 
 // Marks `mark` and `rings` rings of neighbours around the marked vertices (rings in CSR form).
@@ -645,18 +654,13 @@ struct BiharmonicStep {
       std::vector<std::vector<Vec2>> A, B;
       for (const Contour& c : ps.contours) A.push_back(flatten(pl, c.points));
       for (const Contour& c : cs->contours) B.push_back(flatten(pl, c.points));
+      std::vector<std::vector<double>> sim(A.size(), std::vector<double>(B.size()));
+      for (std::size_t i = 0; i < A.size(); ++i)
+        for (std::size_t j = 0; j < B.size(); ++j) sim[i][j] = contour_similarity(A[i], B[j]);
       std::vector<ContourMatch> maps(A.size());
       for (std::size_t i = 0; i < A.size(); ++i) {
-        int partner = -1, count = 0;
-        for (std::size_t j = 0; j < B.size(); ++j)
-          if (contour_similarity(A[i], B[j]) > threshold) {
-            partner = static_cast<int>(j);
-            ++count;
-          }
-        if (count != 1) return false;
-        int back = 0;
-        for (std::size_t k = 0; k < A.size(); ++k) back += contour_similarity(A[k], B[static_cast<std::size_t>(partner)]) > threshold;
-        if (back != 1) return false;
+        const int partner = one_to_one_partner(sim, i, threshold);
+        if (partner < 0) return false;
         maps[i] = match_contour(A[i], B[static_cast<std::size_t>(partner)]);
         if (maps[i].targets.size() != A[i].size()) return false;
       }
@@ -666,7 +670,7 @@ struct BiharmonicStep {
         h[v] = dot(x[v] - pl.origin, pl.normal);
         if (std::abs(h[v]) <= 1e-9) h[v] = 0;
       }
-      std::size_t found = 0;
+      const std::size_t before = cons.size();
       std::vector<std::array<std::uint32_t, 2>> crossing;
       for (std::size_t v = 0; v < x.size(); ++v)
         if (h[v] == 0) crossing.push_back({static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(v)});
@@ -675,27 +679,23 @@ struct BiharmonicStep {
       for (const auto& [a, b] : crossing) {
         const double s = a == b ? 0.0 : h[a] / (h[a] - h[b]);
         const Vec3 p = x[a] + s * (x[b] - x[a]);
-        const Vec2 q = to_plane(pl, p);
         double best = std::numeric_limits<double>::infinity();
         std::size_t bc = 0, bk = 0;
-        double bf = 0;
-        for (std::size_t c = 0; c < A.size(); ++c) {
-          const std::vector<Vec2>& poly = A[c];
-          for (std::size_t k = 0; k < poly.size(); ++k) {
-            const Vec2 u = poly[k], e = poly[(k + 1) % poly.size()] - u;
-            const double l2 = dot(e, e);
-            const double f = l2 > 0 ? std::clamp(dot(q - u, e) / l2, 0.0, 1.0) : 0.0;
-            const double d = norm(q - (u + f * e));
-            if (d < best) best = d, bc = c, bk = k, bf = f;
-          }
+        Vec3 bq = p;
+        for (std::size_t c = 0; c < ps.contours.size(); ++c) {
+          std::int32_t k = -1;
+          const Vec3 q = closest_on_loop(ps.contours[c].points, p, k);
+          if (const double d = distance(p, q); d < best) best = d, bc = c, bk = static_cast<std::size_t>(k), bq = q;
         }
         if (!(best < 1.0)) return false;  // the section is not on frame t−1's contours
+        const std::vector<Vec3>& L = ps.contours[bc].points;
+        const Vec3 e = L[(bk + 1) % L.size()] - L[bk];
+        const double f = dot(e, e) > 0 ? dot(bq - L[bk], e) / dot(e, e) : 0.0;
         const std::vector<Vec2>& T = maps[bc].targets;
-        const Vec2 target = (1.0 - bf) * T[bk] + bf * T[(bk + 1) % T.size()];
+        const Vec2 target = (1.0 - f) * T[bk] + f * T[(bk + 1) % T.size()];
         cons.push_back({a, b, s, from_plane(pl, target) - p});
-        ++found;
       }
-      if (found == 0) return false;
+      if (cons.size() == before) return false;
     }
     // The system depends on the section's edges and their parameters only: where they are those of the last
     // factorised frame (sections through vertices on the planes, which stay there), it is reused.
@@ -879,8 +879,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
       if (biharmonic.run(seq, static_cast<int>(t), x, mesh_edges, LtL, opt.threshold, y)) {
         const std::size_t crossings = count_self_intersections(TriangleMesh{y, frame0.triangles});
         const FrameQuality q = frame_quality(y, frame0.triangles, crossings);
-        if (q.crossings == 0 && q.worst >= opt.retry_min_angle_deg && q.good >= opt.retry_min_good_share &&
-            std::all_of(y.begin(), y.end(), [](const Vec3& p) { return is_finite(p); })) {
+        if (acceptable(q, opt) && std::all_of(y.begin(), y.end(), [](const Vec3& p) { return is_finite(p); })) {
           fr.biharmonic = true;
           carry = y;
           out.positions.push_back(std::move(y));
@@ -1203,7 +1202,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
           best_report = fr;
           best_quality = q;
         }
-        if (q.crossings == 0 && q.worst >= opt.retry_min_angle_deg && q.good >= opt.retry_min_good_share) break;
+        if (acceptable(q, opt)) break;
       }
       if (fr.redone) {  // the best of the tries (report: redone, whichever it was)
         x = std::move(best);

@@ -100,14 +100,15 @@ struct MorphOptions {
                                    //!< the apex of the equilateral triangle on its opposite edge) against the umbrella;
                                    //!< undoes the anisotropy that contraction leaves and the umbrella keeps
                                    //!< (uniform Laplacian); springs keep frame 0's shapes but can tangle
-  bool biharmonic = false;         //!< RbfProject: a frame whose every contour matches one of frame 0's contour chains
-                                   //!< one-to-one (no split, merge, appearance or vanishing on any slice in this frame
-                                   //!< or the next) is frame t−1's mesh plus the biharmonic displacement (Σ|L d|²
-                                   //!< minimal, uniform Laplacian) that puts every chain vertex on its matched point of
-                                   //!< the contour (Fig. 7): one factorisation serves all such frames, so they cost a
-                                   //!< back-substitution instead of a projection and relaxation. A frame that then has an
-                                   //!< angle below retry_min_angle_deg, fewer than retry_min_good_share of its angles in
-                                   //!< 40–80° or crossing triangles is done the standard way. Off by default
+  bool biharmonic = false;         //!< RbfProject: a frame whose every slice keeps frame t−1's contours (the same count,
+                                   //!< each matched one-to-one by the similarity index) is frame t−1's mesh plus the
+                                   //!< thin-plate displacement (Σ|L d|² minimal, uniform Laplacian) that puts the mesh's
+                                   //!< section on each slice plane onto frame t's contours (through the Fig. 7 match of
+                                   //!< frame t−1's contour): one sparse LDLᵀ, reused while the section's edges do not
+                                   //!< change, instead of a projection and relaxation. A frame that then has an angle
+                                   //!< below retry_min_angle_deg, fewer than retry_min_good_share of its angles in 40–80°
+                                   //!< or crossing triangles is done the standard way. Off by default (biv-me: the
+                                   //!< frames that fall back after such frames fail the quality targets)
 };
 
 //! A 2D contour topology change on one slice between two frames.
