@@ -24,6 +24,10 @@ struct ArcPolygon {
     for (std::size_t i = 0; i < p.size(); ++i) s[i + 1] = s[i] + norm(p[(i + 1) % p.size()] - p[i]);
     length = s.back();
   }
+  double wrap(double t) const {
+    t = std::fmod(t, length);
+    return t < 0 ? t + length : t;
+  }
   Vec2 at(double t) const {
     t = std::fmod(t, length);
     if (t < 0) t += length;
@@ -80,6 +84,8 @@ ContourMatch match_contour(const std::vector<Vec2>& source, const std::vector<Ve
   const ArcPolygon a(source), b(target);
   ContourMatch match;
   match.targets.resize(source.size());
+  match.arc.resize(source.size());
+  match.polygon = target;
 
   const std::vector<Crossing> cs = crossings(a, b);
   if (cs.size() >= 2 && same_cyclic_order(cs, b.length)) {
@@ -99,7 +105,9 @@ ContourMatch match_contour(const std::vector<Vec2>& source, const std::vector<Ve
       if (off_a < 0) off_a += a.length;
       double span_b = c1.s_target - c0.s_target;
       if (span_b <= 0) span_b += b.length;
-      match.targets[i] = b.at(c0.s_target + (span_a > 0 ? off_a / span_a : 0.0) * span_b);
+      const double u = c0.s_target + (span_a > 0 ? off_a / span_a : 0.0) * span_b;
+      match.arc[i] = b.wrap(u);
+      match.targets[i] = b.at(u);
     }
     return match;
   }
@@ -131,8 +139,21 @@ ContourMatch match_contour(const std::vector<Vec2>& source, const std::vector<Ve
     if (cost(m1) < cost(m2)) hi = m2; else lo = m1;
   }
   best = 0.5 * (lo + hi);
-  for (std::size_t i = 0; i < source.size(); ++i) match.targets[i] = b.at(best + a.s[i] * ratio);
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    match.arc[i] = b.wrap(best + a.s[i] * ratio);
+    match.targets[i] = b.at(best + a.s[i] * ratio);
+  }
   return match;
+}
+
+Vec2 target_between(const ContourMatch& m, std::size_t i, double f) {
+  const std::size_t n = m.arc.size();
+  if (n == 0 || m.polygon.size() < 2) return m.targets.empty() ? Vec2{} : m.targets[i % m.targets.size()];
+  const ArcPolygon b(m.polygon);
+  if (!(b.length > 0)) return m.targets[i % n];
+  double span = m.arc[(i + 1) % n] - m.arc[i % n];
+  if (span < 0) span += b.length;  // the mapping keeps the cyclic order: the next target is ahead
+  return b.at(m.arc[i % n] + std::clamp(f, 0.0, 1.0) * span);
 }
 
 }  // namespace c4d

@@ -85,6 +85,14 @@ const Slice* find_slice(const Frame& f, int id) {
   return nullptr;
 }
 
+// Every contour of a frame, as closed polylines (mm).
+std::vector<std::vector<Vec3>> frame_contours(const Frame& f) {
+  std::vector<std::vector<Vec3>> out;
+  for (const Slice& s : f.slices)
+    for (const Contour& c : s.contours) out.push_back(c.points);
+  return out;
+}
+
 std::string event_kind(int before, int after) {
   if (before == 0) return "appear";
   if (after == 0) return "vanish";
@@ -691,8 +699,7 @@ struct BiharmonicStep {
         const std::vector<Vec3>& L = ps.contours[bc].points;
         const Vec3 e = L[(bk + 1) % L.size()] - L[bk];
         const double f = dot(e, e) > 0 ? dot(bq - L[bk], e) / dot(e, e) : 0.0;
-        const std::vector<Vec2>& T = maps[bc].targets;
-        const Vec2 target = (1.0 - f) * T[bk] + f * T[(bk + 1) % T.size()];
+        const Vec2 target = target_between(maps[bc], bk, f);
         cons.push_back({a, b, s, from_plane(pl, target) - p});
       }
       if (cons.size() == before) return false;
@@ -876,12 +883,26 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
     if (project && opt.biharmonic) {
       // Every slice keeps frame t−1's contours: the biharmonic displacement, if the triangles stay good.
       std::vector<Vec3> y;
-      if (biharmonic.run(seq, static_cast<int>(t), x, mesh_edges, LtL, opt.threshold, y)) {
+      if (biharmonic.run(seq, static_cast<int>(t), x, mesh_edges, LtL, opt.threshold, y) &&
+          std::all_of(y.begin(), y.end(), [](const Vec3& p) { return is_finite(p); })) {
+        const std::vector<Vec3> before_fit = y;
+        // The section follows the contours only at the mesh's section points: where a contour has corners
+        // between them (coarse, jagged real contours), the same guarded fit as step 5 takes the surface
+        // onto it, and the frame is kept only if it gets within fit_goal_mm of every contour sample.
+        ContourFitReport cf;
+        if (opt.contour_fit) {
+          cf = guarded_contour_fit(y, frame0.triangles, contour_fit_samples(frame_contours(seq.frames[t]), opt.fit.step_mm),
+                                   std::vector<char>(nv, 0), ring_start, ring_index, opt.retry_min_angle_deg,
+                                   opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
+        }
         const std::size_t crossings = count_self_intersections(TriangleMesh{y, frame0.triangles});
         const FrameQuality q = frame_quality(y, frame0.triangles, crossings);
-        if (acceptable(q, opt) && std::all_of(y.begin(), y.end(), [](const Vec3& p) { return is_finite(p); })) {
+        if (acceptable(q, opt) && cf.max_after_mm <= opt.fit_goal_mm) {
           fr.biharmonic = true;
-          carry = y;
+          fr.fit_moved = cf.moved;
+          fr.fit_max_before = cf.max_before_mm;
+          fr.fit_max_after = cf.max_after_mm;
+          carry = before_fit;  // as step 5: the next frame starts from the mesh before the fit
           out.positions.push_back(std::move(y));
           continue;
         }
@@ -1218,10 +1239,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
     if (project && opt.contour_fit) {
       // 5. The surface onto the frame's contours where it cuts across them (contour_fit.h). The next
       //    frame starts from the mesh before this fit (carry).
-      std::vector<std::vector<Vec3>> contours;
-      for (const Slice& s : seq.frames[t].slices)
-        for (const Contour& c : s.contours) contours.push_back(c.points);
-      const std::vector<Vec3> samples = contour_fit_samples(contours, opt.fit.step_mm);
+      const std::vector<Vec3> samples = contour_fit_samples(frame_contours(seq.frames[t]), opt.fit.step_mm);
       ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, samples, pinned, ring_start, ring_index,
                                                 opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
       if (cf.max_after_mm > opt.fit_goal_mm && opt.fit_fallback_min_angle_deg < opt.fit_min_angle_deg) {

@@ -101,5 +101,29 @@ TEST(ContourMatching, TargetOrientationAndStartPointDoNotMatter) {
   for (std::size_t i = 0; i < src.size(); ++i) EXPECT_NEAR(norm(a.targets[i] - b.targets[i]), 0, 1e-9);
 }
 
+// A coarse, jagged target (fewer points than the source, with corners between consecutive targets):
+// the points between two targets stay on the target polygon, in order, where the chord would cut the
+// corners; both ends are the targets themselves. Both matching methods.
+TEST(ContourMatching, PointsBetweenTargetsFollowTheTargetPolygon) {
+  std::vector<Vec2> jagged = ellipse(9, 8, {0.5, 0}, 24);
+  for (std::size_t i = 0; i < jagged.size(); i += 2) jagged[i] = 1.04 * jagged[i];  // zig-zag of about 0.35 mm
+  for (const auto& src : {ellipse(10, 6, {0, 0}, 120), ellipse(12, 12, {0, 0}, 120)}) {
+    const ContourMatch m = match_contour(src, jagged);
+    ASSERT_EQ(m.arc.size(), src.size());
+    double chord_worst = 0, between_worst = 0;
+    for (std::size_t i = 0; i < src.size(); ++i) {
+      EXPECT_LT(norm(target_between(m, i, 0.0) - m.targets[i]), 1e-9);
+      EXPECT_LT(norm(target_between(m, i, 1.0) - m.targets[(i + 1) % src.size()]), 1e-9);
+      for (double f : {0.25, 0.5, 0.75}) {
+        const Vec2 chord = (1 - f) * m.targets[i] + f * m.targets[(i + 1) % src.size()];
+        chord_worst = std::max(chord_worst, distance_to_polygon(chord, jagged));
+        between_worst = std::max(between_worst, distance_to_polygon(target_between(m, i, f), jagged));
+      }
+    }
+    EXPECT_LT(between_worst, 1e-9);
+    EXPECT_GT(chord_worst, 0.01);  // the case the function is for
+  }
+}
+
 }  // namespace
 }  // namespace c4d

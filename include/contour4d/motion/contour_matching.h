@@ -21,7 +21,15 @@ struct ContourMatch {
   std::vector<Vec2> targets;
   MatchMethod method = MatchMethod::Aligned;
   int break_points = 0;
+  std::vector<Vec2> polygon;  //!< the target polygon, turned to the source's orientation
+  std::vector<double> arc;    //!< per target, its arc position along `polygon` (mm, in [0, length))
 };
+
+//! The point of the target polygon a fraction f (0..1) of the way, along the polygon, from the
+//! target of source point i to the target of source point i+1 (cyclic): where a point that far along
+//! the source segment (i, i+1) lands. Unlike the chord between the two targets, it stays on the
+//! target polygon where that has corners between them.
+Vec2 target_between(const ContourMatch& m, std::size_t i, double f);
 
 //! Maps the closed polygon `source` (in order; its points are the ones that move) onto the closed
 //! polygon `target`, both in the same plane coordinates (mm). Orientation of the inputs does not

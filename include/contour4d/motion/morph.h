@@ -104,11 +104,13 @@ struct MorphOptions {
                                    //!< each matched one-to-one by the similarity index) is frame t−1's mesh plus the
                                    //!< thin-plate displacement (Σ|L d|² minimal, uniform Laplacian) that puts the mesh's
                                    //!< section on each slice plane onto frame t's contours (through the Fig. 7 match of
-                                   //!< frame t−1's contour): one sparse LDLᵀ, reused while the section's edges do not
-                                   //!< change, instead of a projection and relaxation. A frame that then has an angle
-                                   //!< below retry_min_angle_deg, fewer than retry_min_good_share of its angles in 40–80°
-                                   //!< or crossing triangles is done the standard way. Off by default (biv-me: the
-                                   //!< frames that fall back after such frames fail the quality targets)
+                                   //!< frame t−1's contour, along frame t's contour between targets): one sparse LDLᵀ,
+                                   //!< reused while the section's edges do not change, instead of a projection and
+                                   //!< relaxation; then the contour fit (contour_fit). A frame that then is farther than
+                                   //!< fit_goal_mm from a contour sample, has an angle below retry_min_angle_deg, fewer
+                                   //!< than retry_min_good_share of its angles in 40–80° or crossing triangles is done
+                                   //!< the standard way. Off by default (biv-me: frame 6, on the standard path after
+                                   //!< such frames, keeps crossing triangles)
 };
 
 //! A 2D contour topology change on one slice between two frames.
