@@ -29,8 +29,7 @@ struct ArcPolygon {
     return t < 0 ? t + length : t;
   }
   Vec2 at(double t) const {
-    t = std::fmod(t, length);
-    if (t < 0) t += length;
+    t = wrap(t);
     const auto it = std::upper_bound(s.begin(), s.end(), t);
     std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, (it - s.begin()) - 1));
     if (i >= p.size()) i = p.size() - 1;
