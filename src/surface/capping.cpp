@@ -160,4 +160,127 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
   return cap;
 }
 
+namespace {
+
+double lifted(double u, double height, double exponent) {
+  return height * (1.0 - std::pow(1.0 - u / height, exponent));
+}
+
+double cap_height_of(const Vec3& p, const CapFrame& frame) {
+  return std::clamp(frame.dir * (p.z - frame.z0), 0.0, frame.height);
+}
+
+double cap_volume_with(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame,
+                       double exponent) {
+  double volume = 0.0;
+  for (const Triangle& t : triangles) {
+    const Vec3 a = positions[t[0]], b = positions[t[1]], c = positions[t[2]];
+    const double area = 0.5 * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+    double sum = 0.0;
+    for (std::uint32_t v : t) sum += lifted(cap_height_of(positions[v], frame), frame.height, exponent);
+    volume += area * sum / 3.0;
+  }
+  return std::abs(volume);
+}
+
+}  // namespace
+
+double cap_volume(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame) {
+  if (frame.height <= 0.0) return 0.0;
+  return cap_volume_with(positions, triangles, frame, 1.0);
+}
+
+double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill,
+                               double hold) {
+  if (area <= 0.0 || height <= 0.0 || area < hold * neighbour_area) return 0.0;
+  const double slope = spacing > 0.0 && std::isfinite(spacing) ? (area - neighbour_area) / spacing : 0.0;
+  // Piecewise linear in d: integrate exactly over the pieces where the clamp is inactive.
+  double volume = 0.0;
+  if (slope >= 0.0) {
+    volume = area * height;
+  } else {
+    const double end = std::min(height, area / -slope);  // where the extrapolated area reaches 0
+    volume = area * end + 0.5 * slope * end * end;
+  }
+  return std::min(volume, std::clamp(max_fill, 0.0, 1.0) * area * height);
+}
+
+double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame, double target) {
+  if (frame.height <= 0.0 || triangles.empty()) return 1.0;
+  if (cap_volume_with(positions, triangles, frame, 1.0) >= target) return 1.0;
+  double lo = 1.0, hi = 64.0;
+  if (cap_volume_with(positions, triangles, frame, hi) <= target) {
+    lo = hi;
+  } else {
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (cap_volume_with(positions, triangles, frame, mid) < target ? lo : hi) = mid;
+    }
+  }
+  std::vector<std::uint32_t> vertices;
+  for (const Triangle& t : triangles) vertices.insert(vertices.end(), t.begin(), t.end());
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  for (std::uint32_t v : vertices) {
+    const double u = frame.dir * (positions[v].z - frame.z0);
+    if (u > 0.0 && u < frame.height) positions[v].z = frame.z0 + frame.dir * lifted(u, frame.height, lo);
+  }
+  return lo;
+}
+
+namespace {
+
+double band_phi(double t) { return 6.75 * t * t * (1.0 - t); }
+
+Vec3 widened(const Vec3& p, const EndBand& band, double alpha) {
+  const double span = band.z_end - band.z_ref;
+  const double t = span != 0.0 ? std::clamp((p.z - band.z_ref) / span, 0.0, 1.0) : 0.0;
+  const Vec2 c{band.c_ref.x + t * (band.c_end.x - band.c_ref.x), band.c_ref.y + t * (band.c_end.y - band.c_ref.y)};
+  const double k = 1.0 + alpha * band_phi(t);
+  return {c.x + k * (p.x - c.x), c.y + k * (p.y - c.y), p.z};
+}
+
+double band_volume_with(const std::vector<Vec3>& positions, const EndBand& band, double orientation, double alpha,
+                        const std::vector<char>& movable) {
+  // ∮ (z − z_ref) n_z dA over the wall and the end disk (the neighbouring disk adds 0).
+  double volume = 0.0;
+  for (const Triangle& t : band.triangles) {
+    Vec3 q[3];
+    for (int k = 0; k < 3; ++k) q[k] = movable[t[k]] ? widened(positions[t[k]], band, alpha) : positions[t[k]];
+    const double area = 0.5 * ((q[1].x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (q[1].y - q[0].y));
+    volume += orientation * area * ((q[0].z + q[1].z + q[2].z) / 3.0 - band.z_ref);
+  }
+  const double dir = band.z_end >= band.z_ref ? 1.0 : -1.0;
+  volume += dir * (band.z_end - band.z_ref) * band.area_end;
+  return volume;
+}
+
+}  // namespace
+
+double end_band_volume(const std::vector<Vec3>& positions, const EndBand& band, double orientation) {
+  std::vector<char> none(positions.size(), 0);
+  return band_volume_with(positions, band, orientation, 0.0, none);
+}
+
+double hermite_band_volume(double a0, double a1, double m0, double m1, double h) {
+  return h * (a0 + a1) / 2.0 + h * h * (m0 - m1) / 12.0;
+}
+
+double fill_end_band(std::vector<Vec3>& positions, const EndBand& band, double target, double orientation) {
+  std::vector<char> movable(positions.size(), 0);
+  for (std::uint32_t v : band.movable) movable[v] = 1;
+  if (band.triangles.empty() || band_volume_with(positions, band, orientation, 0.0, movable) >= target) return 0.0;
+  double lo = 0.0, hi = 1.0;
+  if (band_volume_with(positions, band, orientation, hi, movable) <= target) {
+    lo = hi;
+  } else {
+    for (int it = 0; it < 50; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (band_volume_with(positions, band, orientation, mid, movable) < target ? lo : hi) = mid;
+    }
+  }
+  for (std::uint32_t v : band.movable) positions[v] = widened(positions[v], band, lo);
+  return lo;
+}
+
 }  // namespace c4d

@@ -156,4 +156,96 @@ TEST(Capping, CapCoversTheRegionAndKeepsLoopEdges) {
   }
 }
 
+TEST(Caps, ExtrapolatedVolumeFollowsTheLastTwoSections) {
+  // A tube cut across: the full prism, up to max_fill.
+  EXPECT_DOUBLE_EQ(c4d::extrapolated_cap_volume(100, 100, 5, 2.5, 1.0), 250.0);
+  EXPECT_DOUBLE_EQ(c4d::extrapolated_cap_volume(100, 100, 5, 2.5, 0.95), 237.5);
+  // Slowly shrinking (within `hold`): ∫₀^2.5 (100 − d) dd.
+  EXPECT_DOUBLE_EQ(c4d::extrapolated_cap_volume(100, 105, 5, 2.5, 1.0), 250.0 - 0.5 * 2.5 * 2.5);
+  // Growing sections never give more than the prism (the cap stays over its contour).
+  EXPECT_DOUBLE_EQ(c4d::extrapolated_cap_volume(100, 50, 5, 2.5, 1.0), 250.0);
+  // A closing end (an apex): no lift.
+  EXPECT_EQ(c4d::extrapolated_cap_volume(40, 100, 5, 2.5, 1.0), 0.0);
+  EXPECT_EQ(c4d::extrapolated_cap_volume(0, 0, 5, 2.5, 1.0), 0.0);
+}
+
+TEST(Caps, HermiteBandVolumeIsExactForCubicAreas) {
+  EXPECT_DOUBLE_EQ(c4d::hermite_band_volume(7, 7, 0, 0, 3), 21.0);  // constant area
+  EXPECT_DOUBLE_EQ(c4d::hermite_band_volume(2, 8, 2, 2, 3), 15.0);  // linear area: the trapezoid
+  // A(t) = t³ on [0, 2]: ∫ = 4.
+  EXPECT_NEAR(c4d::hermite_band_volume(0, 8, 0, 12, 2), 4.0, 1e-12);
+}
+
+TEST(Caps, FillLiftsADomeToItsTargetWithoutMovingTheRim) {
+  const auto loop = ellipse(10, 10, 64);
+  const auto cap = c4d::triangulate_cap({loop}, c4d::CapStyle::Rounded, {1.0, 2.5});
+  std::vector<Vec3> pos;
+  for (std::size_t k = 0; k < cap.points.size(); ++k) pos.push_back({cap.points[k].x, cap.points[k].y, 3.0 - cap.height[k]});
+  const c4d::CapFrame frame{3.0, -1.0, 2.5};  // a bottom cap under the plane z = 3
+  const double area = c4d::signed_area(loop);
+  const double before = c4d::cap_volume(pos, cap.triangles, frame);
+  EXPECT_NEAR(before, 2.0 / 3.0 * area * 2.5, 0.05 * area * 2.5);  // a half ellipsoid
+  // Already full enough: unchanged.
+  auto same = pos;
+  EXPECT_EQ(c4d::fill_cap(same, cap.triangles, frame, 0.5 * area * 2.5), 1.0);
+  EXPECT_EQ(same, pos);
+  const double target = 0.9 * area * 2.5;
+  auto filled = pos;
+  EXPECT_GT(c4d::fill_cap(filled, cap.triangles, frame, target), 1.0);
+  EXPECT_NEAR(c4d::cap_volume(filled, cap.triangles, frame), target, 1e-6 * target);
+  for (std::size_t k = 0; k < pos.size(); ++k) {
+    EXPECT_EQ(filled[k].x, pos[k].x);
+    EXPECT_EQ(filled[k].y, pos[k].y);
+    EXPECT_GE(filled[k].z, 0.5 - 1e-12);  // never past the cap height
+    EXPECT_LE(filled[k].z, pos[k].z);     // only lifted (downwards here)
+    if (k < loop.size()) {
+      EXPECT_EQ(filled[k].z, 3.0);
+    }
+  }
+}
+
+TEST(Caps, EndBandWidensToItsTarget) {
+  // A cone-like wall from a circle of radius 10 (z = 0) up to radius 2 (z = 5), as fairing leaves
+  // between a large contour and a small end contour.
+  const int n = 48, rings = 10;
+  std::vector<Vec3> pos;
+  std::vector<c4d::Triangle> tris;
+  for (int k = 0; k <= rings; ++k) {
+    const double r = 10.0 - 8.0 * k / rings, z = 5.0 * k / rings;
+    for (const Vec2& p : ellipse(r, r, n)) pos.push_back({p.x + 1.0, p.y - 2.0, z});
+  }
+  auto id = [&](int k, int i) { return static_cast<std::uint32_t>(k * n + (i % n)); };
+  for (int k = 0; k < rings; ++k)
+    for (int i = 0; i < n; ++i) {
+      tris.push_back({id(k, i), id(k, i + 1), id(k + 1, i + 1)});
+      tris.push_back({id(k, i), id(k + 1, i + 1), id(k + 1, i)});
+    }
+  c4d::EndBand band;
+  band.triangles = tris;
+  for (int v = n; v < rings * n; ++v) band.movable.push_back(static_cast<std::uint32_t>(v));
+  band.z_end = 5.0;
+  band.z_ref = 0.0;
+  band.c_end = band.c_ref = {1.0, -2.0};
+  const double polygon = 0.5 * n * std::sin(2 * M_PI / n);  // area of the unit 48-gon
+  band.area_end = 4.0 * polygon;
+  const double before = c4d::end_band_volume(pos, band);
+  EXPECT_NEAR(before, polygon * 5.0 / 3.0 * (100 + 20 + 4), 1e-9 * before);  // the frustum
+  auto same = pos;
+  EXPECT_EQ(c4d::fill_end_band(same, band, 0.9 * before), 0.0);
+  EXPECT_EQ(same, pos);
+  const double target = 1.15 * before;
+  auto wide = pos;
+  const double alpha = c4d::fill_end_band(wide, band, target);
+  EXPECT_GT(alpha, 0.0);
+  EXPECT_LT(alpha, 1.0);
+  EXPECT_NEAR(c4d::end_band_volume(wide, band), target, 1e-6 * target);
+  for (int v = 0; v < static_cast<int>(pos.size()); ++v) {
+    EXPECT_EQ(wide[static_cast<std::size_t>(v)].z, pos[static_cast<std::size_t>(v)].z);
+    if (v < n || v >= rings * n) {
+      EXPECT_EQ(wide[static_cast<std::size_t>(v)], pos[static_cast<std::size_t>(v)]);
+    }
+  }
+}
+
 }  // namespace
+

@@ -37,4 +37,60 @@ struct CapMesh {
 //! Loop point k of loop l has index (size of loops 0..l-1) + k in the result.
 CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle style, const CapOptions& options = {});
 
+//! Where a cap sits, in a frame whose slice planes are z = const: the end contour's plane z0, the
+//! side the cap bulges to (dir = +1 above, −1 below) and its greatest height (mm).
+struct CapFrame {
+  double z0 = 0.0;
+  double dir = 1.0;
+  double height = 0.0;
+};
+
+//! Volume (mm³) between a cap's plane and its triangles (exact for a closed rim on the plane: the
+//! sum of each triangle's signed projected area times its mean height, heights clipped to
+//! [0, height]).
+double cap_volume(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame);
+
+//! The volume a cap over an end contour of area `area` should hold when the section area changes
+//! linearly past the end, as it does from the neighbouring slice (area `neighbour_area`, `spacing`
+//! away): ∫₀ʰ clamp(area + (area − neighbour_area)·d/spacing, 0, area) dd, then at most
+//! `max_fill` of the prism area·height. Only for ends whose section holds its size, area ≥ `hold` ·
+//! neighbour_area (a tube cut across: they get a full, flat-topped dome); 0 for ends that close (an
+//! apex, a torus' top): there a straight extrapolation overshoots the rounded truth, so the faired
+//! dome stays.
+double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill,
+                               double hold = 0.9);
+
+//! Lifts a faired cap towards `target` volume without moving its rim or widening it: every height
+//! u ∈ [0, height] becomes height·(1 − (1 − u/height)^e), e ≥ 1 found by bisection (e = 1: no
+//! change; larger e: flatter top, steeper rim). Vertices at height 0 (the rim) stay. Returns the
+//! exponent used (1 when the cap already holds `target`; capped at 64).
+double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame, double target);
+
+//! The wall between an end contour (the one under a cap) and the contours it connects to on the
+//! neighbouring slice, in a frame whose slice planes are z = const.
+struct EndBand {
+  std::vector<Triangle> triangles;      //!< the wall's triangles (outward)
+  std::vector<std::uint32_t> movable;   //!< its free vertices (not on a contour)
+  double z_end = 0.0, z_ref = 0.0;      //!< planes of the end contour and of the neighbouring slice
+  Vec2 c_end{}, c_ref{};                //!< area centroids of the two sides' contours
+  double area_end = 0.0;                //!< area enclosed by the end contour(s) (mm²)
+};
+
+//! Volume (mm³) enclosed by the wall and the two slice planes. `orientation` is +1 when the mesh's
+//! triangles face outward in this frame, −1 otherwise.
+double end_band_volume(const std::vector<Vec3>& positions, const EndBand& band, double orientation = 1.0);
+
+//! The volume between two slices `h` apart whose section areas are a0 (neighbour) and a1 (end)
+//! with slopes m0, m1 (mm²/mm, along the direction from the neighbour to the end): the integral of
+//! the cubic Hermite area curve, h (a0 + a1) / 2 + h² (m0 − m1) / 12. Near a closing end (an apex
+//! whose last section is small) the area falls fastest at the end, and this is larger than the
+//! cone-like wall that fairing leaves between a large and a small contour.
+double hermite_band_volume(double a0, double a1, double m0, double m1, double h);
+
+//! Widens the wall's free vertices about the axis between the two centroids, by the factor
+//! 1 + α φ(t), φ(t) = 27/4 t² (1 − t) (0 with zero slope at the neighbouring slice, 0 at the end
+//! contour, largest at t = 2/3), t the height from the neighbouring plane to the end plane; α ∈
+//! [0, 1] by bisection so that the wall encloses `target` (never narrowed). Returns α.
+double fill_end_band(std::vector<Vec3>& positions, const EndBand& band, double target, double orientation = 1.0);
+
 }  // namespace c4d

@@ -32,6 +32,10 @@ struct SurfaceOptions {
   double contour_tolerance = 0.01;  //!< resampled contours stay about this close to the input (mm): finer spacing on bends (0: spacing `edge`)
   CapStyle caps = CapStyle::Rounded;  //!< how ends are closed
   double cap_height = 0.5;       //!< Rounded cap height as a fraction of the adjacent slice spacing (≤ 0.5)
+  double cap_max_fill = 0.95;    //!< after fairing, a Rounded cap is lifted (never lowered) to the volume the
+                                 //!< linear trend of the last two section areas gives past the end contour, at
+                                 //!< most this fraction of the prism area × cap height (capping.h,
+                                 //!< extrapolated_cap_volume); 0: faired domes as they are
   double threshold = 0.3;        //!< similarity threshold of the connectivity tree (paper: 30 %)
   Tiling tiling = Tiling::Bands;  //!< triangulation between slices (Delaunay falls back to Bands, with a warning,
                                   //!< on a slice pair it cannot tile)
