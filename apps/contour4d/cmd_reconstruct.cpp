@@ -27,6 +27,7 @@ struct ReconstructArgs {
   InputOptions in;
   double edge = SurfaceOptions{}.edge;
   std::string cap = "rounded";
+  double cap_fill = SurfaceOptions{}.cap_max_fill;
   std::string method = "rbf-project";
   int threads = 0;
   double pin_spacing = MorphOptions{}.pin_spacing;
@@ -70,6 +71,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   opt.surface.tiling = a.tiling == "delaunay" ? Tiling::Delaunay : Tiling::Bands;
   opt.surface.remesher = a.remesher == "fast" ? RemeshEngine::Fast : RemeshEngine::Cgal;
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
+  opt.surface.cap_max_fill = a.cap_fill;
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
   opt.morph.pin_spacing = a.pin_spacing;
   opt.morph.vertical_deformation = a.vertical;
@@ -88,7 +90,7 @@ int run_reconstruct(const ReconstructArgs& a) {
       {"space", seq.space},
       {"stack_normal", {seq.normal.x, seq.normal.y, seq.normal.z}},
       {"options",
-       {{"edge_mm", a.edge}, {"cap", a.cap}, {"method", a.method}, {"threshold", opt.surface.threshold},
+       {{"edge_mm", a.edge}, {"cap", a.cap}, {"cap_fill", a.cap_fill}, {"method", a.method}, {"threshold", opt.surface.threshold},
         {"fast", a.fast}, {"tiling", a.tiling}, {"remesher", a.remesher}, {"pin_spacing", a.pin_spacing},
         {"vertical_deformation", a.vertical},
         {"biharmonic", a.biharmonic}}},
@@ -202,6 +204,12 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_option("--cap", args->cap, "end caps: rounded, flat or open")
       ->capture_default_str()
       ->check(CLI::IsMember({"rounded", "flat", "open"}));
+  app->add_option("--cap-fill", args->cap_fill,
+                  "rounded caps on ends that keep their size are filled towards the trend of the last two sections, "
+                  "up to this fraction of the half-spacing prism, and walls into closing ends follow a smooth "
+                  "section-area curve (0: plain faired domes)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   app->add_option("--method", args->method,
                   "deformation: rbf-project (RBF + projection on each frame's surface) or rbf (the paper's RBF only)")
       ->capture_default_str()

@@ -190,9 +190,8 @@ double cap_volume(const std::vector<Vec3>& positions, const std::vector<Triangle
   return cap_volume_with(positions, triangles, frame, 1.0);
 }
 
-double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill,
-                               double hold) {
-  if (area <= 0.0 || height <= 0.0 || area < hold * neighbour_area) return 0.0;
+double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill) {
+  if (area <= 0.0 || height <= 0.0) return 0.0;
   const double slope = spacing > 0.0 && std::isfinite(spacing) ? (area - neighbour_area) / spacing : 0.0;
   // Piecewise linear in d: integrate exactly over the pieces where the clamp is inactive.
   double volume = 0.0;
@@ -229,6 +228,10 @@ double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& trian
 }
 
 namespace {
+
+// The widest a wall may be widened (radius × 1.5 at t = 2/3): a bound against a poor target, far
+// above the 0.29 the bifurcation phantom's 1.7 mm² end contour needs.
+constexpr double kMaxBandWidening = 0.5;
 
 double band_phi(double t) { return 6.75 * t * t * (1.0 - t); }
 
@@ -270,7 +273,7 @@ double fill_end_band(std::vector<Vec3>& positions, const EndBand& band, double t
   std::vector<char> movable(positions.size(), 0);
   for (std::uint32_t v : band.movable) movable[v] = 1;
   if (band.triangles.empty() || band_volume_with(positions, band, orientation, 0.0, movable) >= target) return 0.0;
-  double lo = 0.0, hi = 1.0;
+  double lo = 0.0, hi = kMaxBandWidening;
   if (band_volume_with(positions, band, orientation, hi, movable) <= target) {
     lo = hi;
   } else {

@@ -53,12 +53,10 @@ double cap_volume(const std::vector<Vec3>& positions, const std::vector<Triangle
 //! The volume a cap over an end contour of area `area` should hold when the section area changes
 //! linearly past the end, as it does from the neighbouring slice (area `neighbour_area`, `spacing`
 //! away): ∫₀ʰ clamp(area + (area − neighbour_area)·d/spacing, 0, area) dd, then at most
-//! `max_fill` of the prism area·height. Only for ends whose section holds its size, area ≥ `hold` ·
-//! neighbour_area (a tube cut across: they get a full, flat-topped dome); 0 for ends that close (an
-//! apex, a torus' top): there a straight extrapolation overshoots the rounded truth, so the faired
-//! dome stays.
-double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill,
-                               double hold = 0.9);
+//! `max_fill` of the prism area·height. Ends whose sections hold their size (a tube cut across) get
+//! a full, flat-topped dome; ends that close fast (an apex) a low one, which a faired dome usually
+//! holds already.
+double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill);
 
 //! Lifts a faired cap towards `target` volume without moving its rim or widening it: every height
 //! u ∈ [0, height] becomes height·(1 − (1 − u/height)^e), e ≥ 1 found by bisection (e = 1: no
@@ -90,7 +88,8 @@ double hermite_band_volume(double a0, double a1, double m0, double m1, double h)
 //! Widens the wall's free vertices about the axis between the two centroids, by the factor
 //! 1 + α φ(t), φ(t) = 27/4 t² (1 − t) (0 with zero slope at the neighbouring slice, 0 at the end
 //! contour, largest at t = 2/3), t the height from the neighbouring plane to the end plane; α ∈
-//! [0, 1] by bisection so that the wall encloses `target` (never narrowed). Returns α.
+//! [0, 0.5] by bisection so that the wall encloses `target` (never narrowed; at most 1.5× wider).
+//! Returns α.
 double fill_end_band(std::vector<Vec3>& positions, const EndBand& band, double target, double orientation = 1.0);
 
 }  // namespace c4d
