@@ -4,6 +4,10 @@
 // distance to the contour, which peaks on the chordal axis. The interior points come from CGAL's
 // 2D Delaunay mesher (Shewchuk's refinement) run once; they are re-triangulated with the loops
 // alone so that loop edges are never split and the cap meets the walls edge to edge.
+// Our addition (not in the paper): after fairing, ends hold the volume their sections imply — caps
+// on ends that keep their size are filled towards the linear trend of the last two section areas
+// (as Simpson's discs assume a full half-spacing prism there), and the wall into a closing end
+// follows a cubic Hermite section-area curve (docs/algorithms/one_frame_surface.md).
 #include "contour4d/surface/capping.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>

@@ -6,7 +6,8 @@
 // one strip and remeshing (slow), 1→1 bands are tiled directly with interpolated rows of well-shaped
 // triangles; only branching bands go through CGAL's isotropic remeshing. Instead of λ|μ|ε smoothing
 // and Bézier upsampling, one thin-plate solve (fairing.h) with the contours fixed makes the surface
-// smooth across every contour while it interpolates them exactly.
+// smooth across every contour while it interpolates them exactly; then caps and the walls into
+// closing ends are filled to the volume their sections imply (capping.h).
 #include "contour4d/surface/reconstruct.h"
 
 #include <fmt/format.h>
@@ -254,6 +255,155 @@ std::vector<std::uint32_t> merge_with_bridges(const std::vector<int>& members, s
   return merged;
 }
 
+// Contour links between slice s and s + 1: (lower node, upper node).
+using PairLinks = std::vector<std::vector<std::pair<int, int>>>;
+
+// A Rounded cap on walls, for the volume fill after fairing: its triangles, frame and target.
+struct CapFill {
+  std::vector<Triangle> triangles;
+  CapFrame frame;
+  double target = 0.0;
+  std::vector<int> group;  // the end contours under the cap
+  std::size_t slice = 0;
+  bool top = true;
+};
+
+// Area enclosed by a node's contour, negative for holes.
+double node_area(const Node& n) { return (n.depth % 2 == 1 ? -1.0 : 1.0) * std::abs(signed_area(n.poly)); }
+
+// The share of the neighbouring slice's area (below when `top`, else above) that continues into node
+// n across the walls: each partner's area split among the contours it connects to on n's slice, by
+// their areas.
+double neighbour_share(const std::vector<Node>& nodes, const PairLinks& pair_links, int n, std::size_t s, bool top) {
+  if (top ? s == 0 : s + 1 >= pair_links.size()) return 0.0;
+  const auto& pl = pair_links[top ? s - 1 : s];
+  double share = 0.0;
+  for (auto [lower, upper] : pl) {
+    const int mine = top ? upper : lower, other = top ? lower : upper;
+    if (mine != n) continue;
+    double split = 0.0;
+    for (auto [l2, u2] : pl)
+      if ((top ? l2 : u2) == other) split += node_area(nodes[top ? u2 : l2]);
+    if (split > 0.0) share += node_area(nodes[other]) * node_area(nodes[n]) / split;
+  }
+  return share;
+}
+
+// Near a closing end the faired wall from a large to a small contour is cone-like, thinner than the
+// smooth section-area curve through the slices: each cap's wall (one end contour, partners joined to
+// nothing else) is widened (never narrowed) to that curve's volume (capping.h, fill_end_band).
+void fill_end_bands(TriangleMesh& m, const std::vector<CapFill>& caps, const std::vector<Node>& nodes,
+                    const std::vector<SliceInfo>& slices, const PairLinks& pair_links, const std::vector<char>& fixed) {
+  using Edge = std::pair<std::uint32_t, std::uint32_t>;
+  auto key = [](std::uint32_t a, std::uint32_t c) { return Edge{std::min(a, c), std::max(a, c)}; };
+  std::set<Edge> contour_edges;
+  std::vector<int> vertex_node(m.positions.size(), -1);
+  for (std::size_t n = 0; n < nodes.size(); ++n)
+    for (std::size_t k = 0; k < nodes[n].chain.size(); ++k) {
+      vertex_node[nodes[n].chain[k]] = static_cast<int>(n);
+      contour_edges.insert(key(nodes[n].chain[k], nodes[n].chain[(k + 1) % nodes[n].chain.size()]));
+    }
+  std::map<Edge, std::vector<std::uint32_t>> edge_triangles;
+  double orientation = 0.0;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const Triangle& tr = m.triangles[t];
+    for (int k = 0; k < 3; ++k) edge_triangles[key(tr[k], tr[(k + 1) % 3])].push_back(static_cast<std::uint32_t>(t));
+    const Vec3 a = m.positions[tr[0]], bb = m.positions[tr[1]], c = m.positions[tr[2]];
+    orientation += dot(a, cross(bb, c));
+  }
+  orientation = orientation >= 0.0 ? 1.0 : -1.0;
+  auto centroid = [&](const std::vector<int>& ns) {
+    double w = 0.0;
+    Vec2 c{0.0, 0.0};
+    for (int n : ns) {
+      const auto& poly = nodes[n].poly;
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        const Vec2 p = poly[k], q = poly[(k + 1) % poly.size()];
+        const double cr = p.x * q.y - q.x * p.y;
+        w += cr;
+        c.x += (p.x + q.x) * cr;
+        c.y += (p.y + q.y) * cr;
+      }
+    }
+    return w != 0.0 ? Vec2{c.x / (3.0 * w), c.y / (3.0 * w)} : Vec2{0.0, 0.0};
+  };
+  for (const CapFill& cf : caps) {
+    if (cf.group.size() != 1 || nodes[cf.group[0]].depth % 2 == 1) continue;  // rings and holes: not a simple end
+    const int end = cf.group[0];
+    const std::size_t s = cf.slice;
+    if (cf.top ? s == 0 : s + 1 >= slices.size()) continue;
+    const std::size_t ns = cf.top ? s - 1 : s + 1;
+    const auto& pl = pair_links[cf.top ? s - 1 : s];
+    std::vector<int> partners;
+    bool simple = true;
+    for (auto [lower, upper] : pl) {
+      const int mine = cf.top ? upper : lower, other = cf.top ? lower : upper;
+      if (mine == end) partners.push_back(other);
+    }
+    for (auto [lower, upper] : pl) {
+      const int mine = cf.top ? upper : lower, other = cf.top ? lower : upper;
+      if (mine != end && std::find(partners.begin(), partners.end(), other) != partners.end()) simple = false;
+    }
+    for (int p : partners) simple = simple && nodes[p].depth % 2 == 0;
+    if (partners.empty() || !simple) continue;
+    // The wall: triangles reached from the end contour's edges, not crossing any contour edge.
+    std::set<Triangle> cap_set(cf.triangles.begin(), cf.triangles.end());
+    std::vector<char> seen(m.triangles.size(), 0);
+    std::vector<std::uint32_t> stack;
+    const auto& chain = nodes[end].chain;
+    for (std::size_t k = 0; k < chain.size(); ++k)
+      for (std::uint32_t t : edge_triangles[key(chain[k], chain[(k + 1) % chain.size()])])
+        if (!seen[t] && !cap_set.count(m.triangles[t])) {
+          seen[t] = 1;
+          stack.push_back(t);
+        }
+    EndBand band;
+    while (!stack.empty() && simple) {
+      const std::uint32_t t = stack.back();
+      stack.pop_back();
+      const Triangle& tr = m.triangles[t];
+      band.triangles.push_back(tr);
+      for (int k = 0; k < 3; ++k) {
+        const int vn = vertex_node[tr[k]];
+        if (vn >= 0 && vn != end && std::find(partners.begin(), partners.end(), vn) == partners.end()) simple = false;
+        const Edge e = key(tr[k], tr[(k + 1) % 3]);
+        if (contour_edges.count(e)) continue;
+        for (std::uint32_t u : edge_triangles[e])
+          if (!seen[u]) {
+            seen[u] = 1;
+            stack.push_back(u);
+          }
+      }
+    }
+    if (!simple || band.triangles.empty()) continue;
+    for (const Triangle& tr : band.triangles)
+      for (std::uint32_t v : tr)
+        if (!fixed[v]) band.movable.push_back(v);
+    std::sort(band.movable.begin(), band.movable.end());
+    band.movable.erase(std::unique(band.movable.begin(), band.movable.end()), band.movable.end());
+    band.z_end = slices[s].plane.origin.z;
+    band.z_ref = slices[ns].plane.origin.z;
+    band.c_end = centroid({end});
+    band.c_ref = centroid(partners);
+    band.area_end = node_area(nodes[end]);
+    double area_ref = 0.0, area_far = 0.0;
+    bool far = true;
+    for (int p : partners) {
+      area_ref += node_area(nodes[p]);
+      area_far += neighbour_share(nodes, pair_links, p, ns, cf.top);
+      far = far && (cf.top ? nodes[p].linked_down : nodes[p].linked_up);
+    }
+    const double h = std::abs(band.z_end - band.z_ref);
+    const double m1 = (band.area_end - area_ref) / h;
+    double m0 = m1;
+    if (far && (cf.top ? ns > 0 : ns + 1 < slices.size())) {
+      const std::size_t fs = cf.top ? ns - 1 : ns + 1;
+      m0 = (band.area_end - area_far) / std::abs(band.z_end - slices[fs].plane.origin.z);
+    }
+    fill_end_band(m.positions, band, hermite_band_volume(area_ref, band.area_end, m0, m1, h), orientation);
+  }
+}
+
 }  // namespace
 
 TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& opt, SurfaceReport* report) {
@@ -391,7 +541,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
       if (ff.slices[s].id == id) return static_cast<int>(s);
     return -1;
   };
-  std::vector<std::vector<std::pair<int, int>>> pair_links(ff.slices.size());
+  PairLinks pair_links(ff.slices.size());
   for (const Connection& c : links) {
     const int sa = slice_index(c.slice_a), sb = slice_index(c.slice_b);
     const int na = node_of[sa][c.contour_a], nb = node_of[sb][c.contour_b];
@@ -599,33 +749,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   std::vector<char> fixed(b.positions.size(), 0);
   std::fill(fixed.begin(), fixed.begin() + contour_vertices, 1);
   std::vector<char> keep_shape;
-  // Rounded caps on walls, for the volume fill after fairing: their triangles, frame and target.
-  struct CapFill {
-    std::vector<Triangle> triangles;
-    CapFrame frame;
-    double target = 0.0;
-    std::vector<int> group;  // the end contours under the cap
-    std::size_t slice = 0;
-    bool top = true;
-  };
   std::vector<CapFill> fills;
-  auto node_area = [&](int n) { return (nodes[n].depth % 2 == 1 ? -1.0 : 1.0) * std::abs(signed_area(nodes[n].poly)); };
-  // The share of the neighbouring slice's area that continues into node n across the walls: each
-  // partner's area split among the contours it connects to on n's slice, by their areas.
-  auto neighbour_share = [&](int n, std::size_t s, bool top) {
-    if (top ? s == 0 : s + 1 >= slices.size()) return 0.0;
-    const auto& pl = pair_links[top ? s - 1 : s];
-    double share = 0.0;
-    for (auto [lower, upper] : pl) {
-      const int mine = top ? upper : lower, other = top ? lower : upper;
-      if (mine != n) continue;
-      double split = 0.0;
-      for (auto [l2, u2] : pl)
-        if ((top ? l2 : u2) == other) split += node_area(top ? u2 : l2);
-      if (split > 0.0) share += node_area(other) * node_area(n) / split;
-    }
-    return share;
-  };
   for (std::size_t s = 0; s < slices.size(); ++s)
     for (bool top : {false, true}) {
       std::vector<char> consumed(nodes.size(), 0);
@@ -679,8 +803,8 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         if (opt.caps == CapStyle::Rounded && !lone && opt.cap_max_fill > 0 && group.size() == 1 && !lone_hole) {
           double area = 0.0, neighbour = 0.0;
           for (int g : group) {
-            area += node_area(g);
-            neighbour += neighbour_share(g, s, top);
+            area += node_area(nodes[g]);
+            neighbour += neighbour_share(nodes, pair_links, g, s, top);
           }
           // The dome's own height: cap_height, or less on a narrow region (triangulate_cap).
           const double height = *std::max_element(cap.height.begin(), cap.height.end());
@@ -697,116 +821,6 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
 
   TriangleMesh mesh{std::move(b.positions), std::move(b.triangles)};
   fixed.resize(mesh.positions.size(), 0);
-  auto fill_end_bands = [&](TriangleMesh& m, const std::vector<CapFill>& caps) {
-    using Edge = std::pair<std::uint32_t, std::uint32_t>;
-    auto key = [](std::uint32_t a, std::uint32_t c) { return Edge{std::min(a, c), std::max(a, c)}; };
-    std::set<Edge> contour_edges;
-    std::vector<int> vertex_node(m.positions.size(), -1);
-    for (std::size_t n = 0; n < nodes.size(); ++n)
-      for (std::size_t k = 0; k < nodes[n].chain.size(); ++k) {
-        vertex_node[nodes[n].chain[k]] = static_cast<int>(n);
-        contour_edges.insert(key(nodes[n].chain[k], nodes[n].chain[(k + 1) % nodes[n].chain.size()]));
-      }
-    std::map<Edge, std::vector<std::uint32_t>> edge_triangles;
-    double orientation = 0.0;
-    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-      const Triangle& tr = m.triangles[t];
-      for (int k = 0; k < 3; ++k) edge_triangles[key(tr[k], tr[(k + 1) % 3])].push_back(static_cast<std::uint32_t>(t));
-      const Vec3 a = m.positions[tr[0]], bb = m.positions[tr[1]], c = m.positions[tr[2]];
-      orientation += dot(a, cross(bb, c));
-    }
-    orientation = orientation >= 0.0 ? 1.0 : -1.0;
-    auto centroid = [&](const std::vector<int>& ns) {
-      double w = 0.0;
-      Vec2 c{0.0, 0.0};
-      for (int n : ns) {
-        const auto& poly = nodes[n].poly;
-        for (std::size_t k = 0; k < poly.size(); ++k) {
-          const Vec2 p = poly[k], q = poly[(k + 1) % poly.size()];
-          const double cr = p.x * q.y - q.x * p.y;
-          w += cr;
-          c.x += (p.x + q.x) * cr;
-          c.y += (p.y + q.y) * cr;
-        }
-      }
-      return w != 0.0 ? Vec2{c.x / (3.0 * w), c.y / (3.0 * w)} : Vec2{0.0, 0.0};
-    };
-    for (const CapFill& cf : caps) {
-      if (cf.group.size() != 1 || nodes[cf.group[0]].depth % 2 == 1) continue;  // rings and holes: not a simple end
-      const int end = cf.group[0];
-      const std::size_t s = cf.slice;
-      if (cf.top ? s == 0 : s + 1 >= slices.size()) continue;
-      const std::size_t ns = cf.top ? s - 1 : s + 1;
-      const auto& pl = pair_links[cf.top ? s - 1 : s];
-      std::vector<int> partners;
-      bool simple = true;
-      for (auto [lower, upper] : pl) {
-        const int mine = cf.top ? upper : lower, other = cf.top ? lower : upper;
-        if (mine == end) partners.push_back(other);
-      }
-      for (auto [lower, upper] : pl) {
-        const int mine = cf.top ? upper : lower, other = cf.top ? lower : upper;
-        if (mine != end && std::find(partners.begin(), partners.end(), other) != partners.end()) simple = false;
-      }
-      for (int p : partners) simple = simple && nodes[p].depth % 2 == 0;
-      if (partners.empty() || !simple) continue;
-      // The wall: triangles reached from the end contour's edges, not crossing any contour edge.
-      std::set<Triangle> cap_set(cf.triangles.begin(), cf.triangles.end());
-      std::vector<char> seen(m.triangles.size(), 0);
-      std::vector<std::uint32_t> stack;
-      const auto& chain = nodes[end].chain;
-      for (std::size_t k = 0; k < chain.size(); ++k)
-        for (std::uint32_t t : edge_triangles[key(chain[k], chain[(k + 1) % chain.size()])])
-          if (!seen[t] && !cap_set.count(m.triangles[t])) {
-            seen[t] = 1;
-            stack.push_back(t);
-          }
-      EndBand band;
-      while (!stack.empty() && simple) {
-        const std::uint32_t t = stack.back();
-        stack.pop_back();
-        const Triangle& tr = m.triangles[t];
-        band.triangles.push_back(tr);
-        for (int k = 0; k < 3; ++k) {
-          const int vn = vertex_node[tr[k]];
-          if (vn >= 0 && vn != end && std::find(partners.begin(), partners.end(), vn) == partners.end()) simple = false;
-          const Edge e = key(tr[k], tr[(k + 1) % 3]);
-          if (contour_edges.count(e)) continue;
-          for (std::uint32_t u : edge_triangles[e])
-            if (!seen[u]) {
-              seen[u] = 1;
-              stack.push_back(u);
-            }
-        }
-      }
-      if (!simple || band.triangles.empty()) continue;
-      for (const Triangle& tr : band.triangles)
-        for (std::uint32_t v : tr)
-          if (!fixed[v]) band.movable.push_back(v);
-      std::sort(band.movable.begin(), band.movable.end());
-      band.movable.erase(std::unique(band.movable.begin(), band.movable.end()), band.movable.end());
-      band.z_end = slices[s].plane.origin.z;
-      band.z_ref = slices[ns].plane.origin.z;
-      band.c_end = centroid({end});
-      band.c_ref = centroid(partners);
-      band.area_end = node_area(end);
-      double area_ref = 0.0, area_far = 0.0;
-      bool far = true;
-      for (int p : partners) {
-        area_ref += node_area(p);
-        area_far += neighbour_share(p, ns, cf.top);
-        far = far && (cf.top ? nodes[p].linked_down : nodes[p].linked_up);
-      }
-      const double h = std::abs(band.z_end - band.z_ref);
-      const double m1 = (band.area_end - area_ref) / h;
-      double m0 = m1;
-      if (far && (cf.top ? ns > 0 : ns + 1 < slices.size())) {
-        const std::size_t fs = cf.top ? ns - 1 : ns + 1;
-        m0 = (band.area_end - area_far) / std::abs(band.z_end - slices[fs].plane.origin.z);
-      }
-      fill_end_band(m.positions, band, hermite_band_volume(area_ref, band.area_end, m0, m1, h), orientation);
-    }
-  };
   keep_shape.resize(mesh.positions.size(), 0);
 
   const MeshCheck coarse = check_mesh(mesh, false);
@@ -836,9 +850,8 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   // volume the trend of its last two sections gives, within its height.
   if (moved)
     for (const CapFill& cf : fills) fill_cap(mesh.positions, cf.triangles, cf.frame, cf.target);
-  // Near a closing end the faired wall from a large to a small contour is cone-like, thinner than the
-  // smooth section-area curve through the slices: widen it (never narrow) to that curve's volume.
-  if (moved && !fills.empty()) fill_end_bands(mesh, fills);
+  // The walls into closing ends: widened to the smooth section-area curve's volume.
+  if (moved && !fills.empty()) fill_end_bands(mesh, fills, nodes, slices, pair_links, fixed);
   // Fairing moved the free vertices, stretching triangles where it moved them most (bridges at
   // branchings, domes): one isotropic remeshing of the whole faired surface, projected onto it, with
   // every contour kept as a fixed chain of edges, evens them out across band and cap borders.
