@@ -166,6 +166,11 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
 
 namespace {
 
+// Signed area of the triangle's projection on the slice plane (positive counter-clockwise).
+double projected_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return 0.5 * cross(Vec2{b.x - a.x, b.y - a.y}, Vec2{c.x - a.x, c.y - a.y});
+}
+
 double lifted(double u, double height, double exponent) {
   return height * (1.0 - std::pow(1.0 - u / height, exponent));
 }
@@ -178,8 +183,7 @@ double cap_volume_with(const std::vector<Vec3>& positions, const std::vector<Tri
                        double exponent) {
   double volume = 0.0;
   for (const Triangle& t : triangles) {
-    const Vec3 a = positions[t[0]], b = positions[t[1]], c = positions[t[2]];
-    const double area = 0.5 * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+    const double area = projected_area(positions[t[0]], positions[t[1]], positions[t[2]]);
     double sum = 0.0;
     for (std::uint32_t v : t) sum += lifted(cap_height_of(positions[v], frame), frame.height, exponent);
     volume += area * sum / 3.0;
@@ -254,12 +258,9 @@ double band_volume_with(const std::vector<Vec3>& positions, const EndBand& band,
   for (const Triangle& t : band.triangles) {
     Vec3 q[3];
     for (int k = 0; k < 3; ++k) q[k] = movable[t[k]] ? widened(positions[t[k]], band, alpha) : positions[t[k]];
-    const double area = 0.5 * ((q[1].x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (q[1].y - q[0].y));
-    volume += orientation * area * ((q[0].z + q[1].z + q[2].z) / 3.0 - band.z_ref);
+    volume += orientation * projected_area(q[0], q[1], q[2]) * ((q[0].z + q[1].z + q[2].z) / 3.0 - band.z_ref);
   }
-  const double dir = band.z_end >= band.z_ref ? 1.0 : -1.0;
-  volume += dir * (band.z_end - band.z_ref) * band.area_end;
-  return volume;
+  return volume + std::abs(band.z_end - band.z_ref) * band.area_end;
 }
 
 }  // namespace

@@ -263,7 +263,7 @@ struct CapFill {
   std::vector<Triangle> triangles;
   CapFrame frame;
   double target = 0.0;
-  std::vector<int> group;  // the end contours under the cap
+  int end = -1;  // the end contour under the cap (one contour, no holes)
   std::size_t slice = 0;
   bool top = true;
 };
@@ -304,14 +304,11 @@ void fill_end_bands(TriangleMesh& m, const std::vector<CapFill>& caps, const std
       contour_edges.insert(key(nodes[n].chain[k], nodes[n].chain[(k + 1) % nodes[n].chain.size()]));
     }
   std::map<Edge, std::vector<std::uint32_t>> edge_triangles;
-  double orientation = 0.0;
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const Triangle& tr = m.triangles[t];
     for (int k = 0; k < 3; ++k) edge_triangles[key(tr[k], tr[(k + 1) % 3])].push_back(static_cast<std::uint32_t>(t));
-    const Vec3 a = m.positions[tr[0]], bb = m.positions[tr[1]], c = m.positions[tr[2]];
-    orientation += dot(a, cross(bb, c));
   }
-  orientation = orientation >= 0.0 ? 1.0 : -1.0;
+  const double orientation = signed_volume(m) >= 0.0 ? 1.0 : -1.0;
   auto centroid = [&](const std::vector<int>& ns) {
     double w = 0.0;
     Vec2 c{0.0, 0.0};
@@ -328,8 +325,7 @@ void fill_end_bands(TriangleMesh& m, const std::vector<CapFill>& caps, const std
     return w != 0.0 ? Vec2{c.x / (3.0 * w), c.y / (3.0 * w)} : Vec2{0.0, 0.0};
   };
   for (const CapFill& cf : caps) {
-    if (cf.group.size() != 1 || nodes[cf.group[0]].depth % 2 == 1) continue;  // rings and holes: not a simple end
-    const int end = cf.group[0];
+    const int end = cf.end;
     const std::size_t s = cf.slice;
     if (cf.top ? s == 0 : s + 1 >= slices.size()) continue;
     const std::size_t ns = cf.top ? s - 1 : s + 1;
@@ -801,16 +797,12 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         // Rings (a contour with holes) keep their faired dome: its height is bound by the ring's width,
         // and a straight extrapolation of the ring's area overshoots (torus: +2.4 % instead of −0.8 %).
         if (opt.caps == CapStyle::Rounded && !lone && opt.cap_max_fill > 0 && group.size() == 1 && !lone_hole) {
-          double area = 0.0, neighbour = 0.0;
-          for (int g : group) {
-            area += node_area(nodes[g]);
-            neighbour += neighbour_share(nodes, pair_links, g, s, top);
-          }
+          const double area = node_area(nodes[n]), neighbour = neighbour_share(nodes, pair_links, n, s, top);
           // The dome's own height: cap_height, or less on a narrow region (triangulate_cap).
           const double height = *std::max_element(cap.height.begin(), cap.height.end());
           fill.frame = {slices[s].plane.origin.z, dir, height};
           fill.target = extrapolated_cap_volume(area, neighbour, spacing(s, !top), height, opt.cap_max_fill);
-          fill.group = group;
+          fill.end = n;
           fill.slice = s;
           fill.top = top;
           fills.push_back(std::move(fill));
