@@ -2,12 +2,13 @@
 #include "contour4d/motion/reconstruct4d.h"
 
 #include <algorithm>
-#include <atomic>
+#include <condition_variable>
 #include <exception>
 #include <map>
 #include <mutex>
 
-#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "contour4d/core/errors.h"
 
@@ -42,38 +43,77 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
     }
     return reconstruct_frame(seq, static_cast<int>(f), so, &rep.surfaces[f]);
   };
+  // The surfaces are built by tasks that take the frames in increasing order, while this thread morphs
+  // (from frame 0's surface on) and builds a frame itself when the morph needs one nobody has taken yet:
+  // the morph overlaps the building. Each surface depends on its frame only, so the result does not
+  // depend on the scheduling.
   std::vector<TriangleMesh> surfaces(n);
-  std::vector<char> built(n, 0);
+  std::vector<char> built(n, 0), taken(n, 0);
   std::vector<std::exception_ptr> errors(n);
-  std::atomic<int> done{0};
-  std::mutex progress_mutex;
+  std::mutex mutex;  // guards built, taken, errors, done and the progress callback
+  std::condition_variable ready;
+  int done = 0;
   const int count = static_cast<int>(std::count(ahead.begin(), ahead.end(), 1));
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t f) {
-    if (!ahead[f]) return;
+  // Takes frame f if nobody has (or the next ahead frame when f < 0) and builds it; false if none was taken.
+  auto take_and_build = [&](std::ptrdiff_t f) {
+    std::size_t g = n;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (f >= 0) {
+        if (!taken[static_cast<std::size_t>(f)]) g = static_cast<std::size_t>(f);
+      } else {
+        for (std::size_t k = 0; k < n && g == n; ++k)
+          if (ahead[k] && !taken[k]) g = k;
+      }
+      if (g == n) return false;
+      taken[g] = 1;
+    }
+    std::exception_ptr error;
+    TriangleMesh mesh;
     try {
-      surfaces[f] = build(f);
-      built[f] = 1;
+      mesh = build(g);
     } catch (...) {
-      errors[f] = std::current_exception();
+      error = std::current_exception();
     }
-    const int d = ++done;
-    if (options.progress) {
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      options.progress("surfaces", d, count);
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      surfaces[g] = std::move(mesh);
+      errors[g] = error;
+      built[g] = 1;
+      if (ahead[g] && options.progress) options.progress("surfaces", ++done, count);
     }
-  });
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);  // the lowest failing frame, whatever the scheduling
-  if (options.progress) options.progress("morph", 0, 1);
-  const auto surface = [&](std::size_t f) -> const TriangleMesh& {
-    if (!built[f]) {
-      surfaces[f] = build(f);
-      built[f] = 1;
-    }
-    return surfaces[f];
+    ready.notify_all();
+    return true;
   };
-  MeshSequence out = project ? morph_sequence(seq, surfaces[0], surface, options.morph, &rep.morph)
-                             : morph_sequence(seq, surfaces[0], surfaces, options.morph, &rep.morph);
+  // Frame t's surface, built here if nobody has taken it; waits for it otherwise.
+  const auto surface = [&](std::size_t t) -> const TriangleMesh& {
+    take_and_build(static_cast<std::ptrdiff_t>(t));
+    std::unique_lock<std::mutex> lock(mutex);
+    ready.wait(lock, [&] { return built[t] != 0; });
+    if (errors[t]) std::rethrow_exception(errors[t]);
+    return surfaces[t];
+  };
+  tbb::task_group builders;
+  const int workers = std::max(1, tbb::this_task_arena::max_concurrency() - 1);
+  for (int w = 0; w < workers; ++w)
+    builders.run([&] {
+      while (take_and_build(-1)) {
+      }
+    });
+  MeshSequence out;
+  std::exception_ptr morph_error;
+  try {
+    const TriangleMesh& frame0 = surface(0);
+    if (options.progress) options.progress("morph", 0, 1);
+    out = morph_sequence(seq, frame0, surface, options.morph, &rep.morph);
+  } catch (...) {
+    morph_error = std::current_exception();
+  }
+  builders.wait();  // every ahead frame is built, as the morph may have stopped on a later one's error
+  // A surface that failed is reported before the morph's own error: the lowest failing frame.
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  if (morph_error) std::rethrow_exception(morph_error);
   if (options.progress) options.progress("morph", 1, 1);
   return out;
 }
