@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include "contour4d/core/errors.h"
 #include "contour4d/io/contours_json.h"
 #include "contour4d/io/output_dir.h"
 #include "contour4d/metrics/conformity.h"
@@ -274,6 +275,24 @@ TEST(Reconstruct4D, OutputIsByteIdenticalAtOneAndTwoThreads) {
 
 // report.json per frame (docs/cli.md): the morph's figures, and the frames' own surfaces, which after frame 0
 // are only projection targets and not tested for self-intersections (null, not false).
+// The frames' surfaces are built while the morph runs: whatever the thread count and scheduling, a run
+// with two bad frames fails naming the lower one (OutputIsByteIdenticalAtOneAndTwoThreads checks the meshes).
+TEST(Reconstruct4D, FailingFramesAreReportedLowestFirstWhateverTheThreads) {
+  Phantom p = small_ellipsoid();
+  for (std::size_t f : {2u, 4u})
+    for (Slice& s : p.contours.frames[f].slices) s.contours.clear();
+  for (int threads : {1, 2, 4}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    try {
+      reconstruct_4d(p.contours);
+      ADD_FAILURE() << "frames 2 and 4 have no contour, yet the run succeeded at " << threads << " threads";
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(e.where().frame, 2) << threads << " threads: " << e.what();
+      EXPECT_EQ(e.code(), ErrorCode::EmptyFrame) << e.what();
+    }
+  }
+}
+
 TEST(Reconstruct4D, ReportListsTheMorphFiguresPerFrame) {
   const Phantom p = small_ellipsoid();
   const fs::path dir = folder_with_contours(p, "report");

@@ -29,7 +29,8 @@ struct Reconstruct4DReport {
   MorphReport morph;
 };
 
-//! Builds the 4D mesh of `seq` (one label). Frames' own surfaces are built in parallel (TBB);
+//! Builds the 4D mesh of `seq` (one label). Frames' own surfaces are built by TBB tasks in frame order
+//! while the morph runs (it waits only for the frame it needs next);
 //! the result does not depend on the thread count.
 //! \throw InvalidInput / SolverError naming the frame that failed (the lowest one if several did).
 MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& options = {},
