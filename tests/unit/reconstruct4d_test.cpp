@@ -273,8 +273,6 @@ TEST(Reconstruct4D, OutputIsByteIdenticalAtOneAndTwoThreads) {
   fs::remove_all(dir);
 }
 
-// report.json per frame (docs/cli.md): the morph's figures, and the frames' own surfaces, which after frame 0
-// are only projection targets and not tested for self-intersections (null, not false).
 // The frames' surfaces are built while the morph runs: whatever the thread count and scheduling, a run
 // with two bad frames fails naming the lower one (OutputIsByteIdenticalAtOneAndTwoThreads checks the meshes).
 TEST(Reconstruct4D, FailingFramesAreReportedLowestFirstWhateverTheThreads) {
@@ -293,6 +291,8 @@ TEST(Reconstruct4D, FailingFramesAreReportedLowestFirstWhateverTheThreads) {
   }
 }
 
+// report.json per frame (docs/cli.md): the morph's figures, and the frames' own surfaces, which after frame 0
+// are only projection targets and not tested for self-intersections (null, not false).
 TEST(Reconstruct4D, ReportListsTheMorphFiguresPerFrame) {
   const Phantom p = small_ellipsoid();
   const fs::path dir = folder_with_contours(p, "report");
