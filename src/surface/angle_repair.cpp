@@ -117,6 +117,9 @@ bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& tr
   return false;
 }
 
+// Below this smallest angle (degrees) a triangle is a sliver (see optimise).
+constexpr double kSliverDeg = 5.0;
+
 std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
                      const std::vector<std::vector<std::uint32_t>>& ring, const std::vector<char>& fixed,
                      const SurfaceSnap& snap, const AngleRepairOptions& options) {
@@ -163,6 +166,13 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
       if (norm(n) <= 0 || edges == 0) continue;
       n = normalized(n);
       len /= edges;
+      // A sliver's own normal is noise (a 173° triangle turns over with a tiny move of its middle
+      // vertex): the fold test of its triangles uses the vertex normal instead, so that opening it
+      // towards the surface's side is allowed and opening it inside out is not.
+      for (std::size_t k = 0; k < fs.size(); ++k) {
+        const Triangle& t = triangles[fs[k]];
+        if (min_angle_deg(positions[t[0]], positions[t[1]], positions[t[2]]) < kSliverDeg) n0[k] = n;
+      }
       // Tangent basis.
       const Vec3 helper = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
       const Vec3 e1 = normalized(cross(n, helper)), e2 = cross(n, e1);

@@ -87,6 +87,27 @@ TEST(AngleRepair, GoodMeshIsLeftAlone) {
   for (std::size_t v = 0; v < m.positions.size(); ++v) EXPECT_TRUE(m.positions[v] == before[v]);
 }
 
+TEST(AngleRepair, OpensASliverThatTurnedOverTowardsTheSurfacesSide) {
+  // Vertex (4, 3) pushed just across the diagonal (3, 3)–(4, 4) of its cell: its triangle there is a
+  // 178° sliver, turned over. Its own normal points down, so only the vertex normals tell which way
+  // opening it is right (biv-me frame 6 kept such a 3.2° triangle).
+  const int n = 8;
+  c4d::TriangleMesh m = grid(n, 1.0);
+  const std::size_t v = 3 * (n + 1) + 4;
+  m.positions[v] = {3.49, 3.51, 0};
+  const Triangle sliver{static_cast<std::uint32_t>(3 * (n + 1) + 3), static_cast<std::uint32_t>(v),
+                        static_cast<std::uint32_t>(4 * (n + 1) + 4)};
+  auto normal_z = [&](const Triangle& t) {
+    return c4d::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]).z;
+  };
+  ASSERT_LT(normal_z(sliver), 0.0);
+  ASSERT_LT(min_angle(m), 2.0);
+  auto plane = [](std::uint32_t, Vec3 p) { return Vec3{p.x, p.y, 0}; };
+  c4d::repair_small_angles(m.positions, m.triangles, boundary(n), plane);
+  EXPECT_GT(min_angle(m), 30.0);
+  for (const Triangle& t : m.triangles) EXPECT_GT(normal_z(t), 0.0);  // every triangle faces up again
+}
+
 TEST(AngleRepair, MovesStayOnACurvedSurfaceAndNeverFold) {
   // The grid wrapped on a cylinder of radius 3 (axis y): the snap projects onto it.
   const int n = 10;

@@ -30,7 +30,8 @@ using SurfaceSnap = std::function<Vec3(std::uint32_t v, Vec3 p)>;
 //! order, each vertex (fixed[v] == 0) of a triangle with an angle below options.target_deg: a
 //! pattern search in the vertex's tangent plane, every candidate snapped onto the surface by `snap`,
 //! accepted only where the smallest angle of the vertex's triangles grows and none of them turns
-//! by more than 60° (no fold). Deterministic (serial). Returns the number of moves made.
+//! by more than 60° (no fold; a sliver, smallest angle below 5°, is compared with the vertex normal
+//! instead of its own, which is noise). Deterministic (serial). Returns the number of moves made.
 std::size_t repair_small_angles(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
                                 const std::vector<char>& fixed, const SurfaceSnap& snap,
                                 const AngleRepairOptions& options = {});
