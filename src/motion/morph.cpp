@@ -1108,7 +1108,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
       MorphFrameReport best_report;
       FrameQuality best_quality;
       int sweep_factor = 1;
-      for (int attempt = 0; attempt <= std::max(0, opt.retry_attempts); ++attempt) {
+      for (int attempt = 0;; ++attempt) {
         if (attempt >= 1) {
           curv_dev = 0;
           sweep_factor = attempt == 1 ? std::max(1, opt.retry_sweep_factor) : 2 * sweep_factor;
@@ -1224,6 +1224,11 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
           best_quality = q;
         }
         if (acceptable(q, opt)) break;
+        // Tries after the first: retry_attempts, and crossing_retry_attempts more while the best so far
+        // still has crossing triangles (the surface would not be valid).
+        const int last = std::max(0, opt.retry_attempts) +
+                         (best_quality.crossings > 0 ? std::max(0, opt.crossing_retry_attempts) : 0);
+        if (attempt >= last) break;
       }
       if (fr.redone) {  // the best of the tries (report: redone, whichever it was)
         x = std::move(best);

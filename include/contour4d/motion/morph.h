@@ -57,6 +57,8 @@ struct MorphOptions {
   double retry_min_good_share = 0.85;  //!< see retry_min_angle_deg
   int retry_attempts = 1;          //!< tries after the first, each with twice the sweeps of the one before (the first
                                    //!< retry: retry_sweep_factor ×), until one meets the criteria; the best is kept
+  int crossing_retry_attempts = 1;  //!< tries after retry_attempts while the best try still has crossing triangles
+                                    //!< (each with twice the sweeps of the one before)
   int retry_sweep_factor = 8;      //!< see retry_min_angle_deg (biv-me frame 6: 61 → 0 triangles below 25°,
                                    //!< 78 → 85 % of angles in 40–80°; 6 gave 84.8 % with the plane snap)
   int projection_iterations = 3;   //!< regularised projection rounds (RbfProject); the relaxation re-projects
