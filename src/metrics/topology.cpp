@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <tuple>
 
@@ -45,7 +46,7 @@ std::string plural(std::size_t n, const char* one, const char* many) {
 }
 
 // Do triangles i and j intersect other than in what they share? (CGAL PMP's rule, on indices.)
-bool triangles_intersect(const TriangleMesh& m, const Triangle& s, const Triangle& t) {
+bool triangles_intersect(const std::vector<Vec3>& positions, const Triangle& s, const Triangle& t) {
   int shared_s[3], shared_t[3], n = 0;
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b)
@@ -54,7 +55,7 @@ bool triangles_intersect(const TriangleMesh& m, const Triangle& s, const Triangl
         shared_t[n] = b;
         ++n;
       }
-  auto P = [&](std::uint32_t v) { return to_point(m.positions[v]); };
+  auto P = [&](std::uint32_t v) { return to_point(positions[v]); };
   if (n == 3) return true;  // the same triangle twice
   if (n == 2) {
     // A shared edge: they overlap only when coplanar with the third corners on the same side.
@@ -104,7 +105,7 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
     if (i == j) return;
     // A pair of two flagged triangles is met twice in the two-set search: counted from its smaller one.
     if (only != nullptr && flagged(y->info()) && x->info() > y->info()) return;
-    if (!triangles_intersect(mesh, mesh.triangles[i], mesh.triangles[j])) return;
+    if (!triangles_intersect(mesh.positions, mesh.triangles[i], mesh.triangles[j])) return;
     ++count;
     if (pairs != nullptr && max_pairs_listed > 0) {
       first.insert({i, j});
@@ -129,6 +130,40 @@ std::size_t count_self_intersections(const TriangleMesh& mesh, std::vector<std::
 std::size_t count_self_intersections_of(const TriangleMesh& mesh, const std::vector<char>& only,
                                         std::vector<std::pair<std::size_t, std::size_t>>* pairs, std::size_t max_pairs_listed) {
   return count_intersecting_pairs(mesh, &only, pairs, max_pairs_listed);
+}
+
+bool intersects_any(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                    const std::vector<std::uint32_t>& these, const std::vector<std::uint32_t>& others) {
+  const std::size_t nv = positions.size();
+  // A triangle's bounding box, or none when count_self_intersections would skip it.
+  auto box = [&](std::uint32_t f) -> std::optional<CGAL::Bbox_3> {
+    if (f >= triangles.size()) return std::nullopt;
+    const Triangle& t = triangles[f];
+    if (!valid_triangle(t, nv)) return std::nullopt;
+    const Vec3 a = positions[t[0]], b = positions[t[1]], c = positions[t[2]];
+    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) return std::nullopt;
+    const Point pa = to_point(a), pb = to_point(b), pc = to_point(c);
+    if (CGAL::collinear(pa, pb, pc)) return std::nullopt;
+    return pa.bbox() + pb.bbox() + pc.bbox();
+  };
+  std::vector<std::pair<std::uint32_t, CGAL::Bbox_3>> mine;
+  for (std::uint32_t f : these)
+    if (const auto b = box(f)) mine.push_back({f, *b});
+  // Closed boxes, as box_self_intersection_d's default: an intersection always has overlapping boxes.
+  auto hit = [&](std::uint32_t f, const CGAL::Bbox_3& bf, std::uint32_t g, const CGAL::Bbox_3& bg) {
+    return f != g && CGAL::do_overlap(bf, bg) && triangles_intersect(positions, triangles[f], triangles[g]);
+  };
+  for (std::size_t i = 0; i < mine.size(); ++i)
+    for (std::size_t j = i + 1; j < mine.size(); ++j)
+      if (hit(mine[i].first, mine[i].second, mine[j].first, mine[j].second)) return true;
+  for (std::uint32_t g : others) {
+    if (std::find(these.begin(), these.end(), g) != these.end()) continue;
+    const auto bg = box(g);
+    if (!bg) continue;
+    for (const auto& [f, bf] : mine)
+      if (hit(f, bf, g, *bg)) return true;
+  }
+  return false;
 }
 
 TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& options) {

@@ -89,32 +89,7 @@ bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& tr
   });
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
-  // A small mesh of these triangles only, over its own vertex ids (shared vertices stay shared,
-  // so adjacent triangles are not reported).
-  TriangleMesh sub;
-  std::vector<char> in_ring;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> ids;  // global → local, sorted
-  auto local = [&](std::uint32_t g) {
-    const auto it = std::lower_bound(ids.begin(), ids.end(), std::make_pair(g, std::uint32_t{0}));
-    if (it != ids.end() && it->first == g) return it->second;
-    const auto l = static_cast<std::uint32_t>(sub.positions.size());
-    sub.positions.push_back(x[g]);
-    ids.insert(it, {g, l});
-    return l;
-  };
-  auto add = [&](std::uint32_t f, char ringed) {
-    const Triangle& t = triangles[f];
-    sub.triangles.push_back({local(t[0]), local(t[1]), local(t[2])});
-    in_ring.push_back(ringed);
-  };
-  for (std::uint32_t f : fs) add(f, 1);
-  for (std::uint32_t f : near)
-    if (std::find(fs.begin(), fs.end(), f) == fs.end()) add(f, 0);
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  if (count_self_intersections(sub, &pairs, sub.triangles.size()) == 0) return false;
-  for (const auto& [i, j] : pairs)
-    if (in_ring[i] || in_ring[j]) return true;
-  return false;
+  return intersects_any(x, triangles, fs, near);
 }
 
 // Below this smallest angle (degrees) a triangle is a sliver (see optimise).

@@ -137,6 +137,40 @@ TEST(Topology, SelfIntersectionsCountCrossingSpheresOnly) {
   EXPECT_EQ(count_self_intersections_of(apart, std::vector<char>(apart.triangles.size(), 1)), 0u);
 }
 
+TEST(Topology, IntersectsAnyAgreesWithTheCountOfEachTriangle) {
+  // Two crossing spheres: for each triangle of the first, intersects_any against every triangle is true
+  // exactly when count_self_intersections_of finds a pair with it (shared edges and vertices excluded).
+  TriangleMesh m = test::icosphere(5.0, 2);
+  const TriangleMesh b = test::icosphere(5.0, 2, {6, 0.3, 0.2});
+  const auto off = static_cast<std::uint32_t>(m.positions.size());
+  const std::size_t half = m.triangles.size();
+  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+  for (Triangle t : b.triangles) m.triangles.push_back({t[0] + off, t[1] + off, t[2] + off});
+  std::vector<std::uint32_t> all(m.triangles.size());
+  for (std::uint32_t f = 0; f < all.size(); ++f) all[f] = f;
+  std::size_t crossing = 0;
+  for (std::uint32_t f = 0; f < half; ++f) {
+    std::vector<char> only(m.triangles.size(), 0);
+    only[f] = 1;
+    const bool expected = count_self_intersections_of(m, only) > 0;
+    EXPECT_EQ(intersects_any(m.positions, m.triangles, {f}, all), expected) << "triangle " << f;
+    crossing += expected;
+  }
+  EXPECT_GT(crossing, 0u);
+  // A vertex's ring with its neighbours: never intersecting (they share vertices and edges only).
+  std::vector<std::uint32_t> ring;
+  for (std::uint32_t f = 0; f < half; ++f)
+    for (std::uint32_t v : m.triangles[f])
+      if (v == 0) ring.push_back(f);
+  EXPECT_FALSE(intersects_any(m.positions, m.triangles, ring, std::vector<std::uint32_t>(all.begin(), all.begin() + half)));
+  // Two ring triangles folded onto each other are found among `these` alone.
+  TriangleMesh fold;
+  fold.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, 0}};
+  fold.triangles = {{0, 1, 2}, {0, 1, 3}};
+  EXPECT_TRUE(intersects_any(fold.positions, fold.triangles, {0, 1}, {}));
+  EXPECT_FALSE(intersects_any(fold.positions, fold.triangles, {0}, {}));
+}
+
 TEST(Topology, NonManifoldAndDegenerateElementsAreReported) {
   // Two tetrahedra touching at one vertex.
   TriangleMesh m;

@@ -77,4 +77,11 @@ std::size_t count_self_intersections_of(const TriangleMesh& mesh, const std::vec
                                         std::vector<std::pair<std::size_t, std::size_t>>* pairs = nullptr,
                                         std::size_t max_pairs_listed = 8);
 
+//! True when one of the triangles `these` (indices into `triangles`) intersects another of `these` or
+//! one of `others`, by count_self_intersections' rule (exact predicates; zero-area, invalid and
+//! non-finite triangles skipped): the test of one vertex's moved ring against the triangles near it,
+//! with no tree built (a few dozen box tests).
+bool intersects_any(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                    const std::vector<std::uint32_t>& these, const std::vector<std::uint32_t>& others);
+
 }  // namespace c4d
