@@ -72,6 +72,17 @@ std::vector<Vec3> from_matrix(const Eigen::MatrixXd& m) {
   return p;
 }
 
+// solver.solve(b) column by column, the columns in parallel: each column's solve is the same sequence
+// of operations as in the solve of the whole matrix, so the result is the same.
+Eigen::MatrixXd solve_columns(const Eigen::SimplicialLDLT<SparseMatrix>& solver, const Eigen::MatrixXd& b) {
+  Eigen::MatrixXd x(b.rows(), b.cols());
+  tbb::parallel_for(Eigen::Index(0), b.cols(), [&](Eigen::Index c) {
+    const Eigen::VectorXd col = solver.solve(b.col(c));
+    x.col(c) = col;
+  });
+  return x;
+}
+
 std::vector<Vec2> flatten(const Plane& pl, const std::vector<Vec3>& pts) {
   std::vector<Vec2> out;
   out.reserve(pts.size());
@@ -1050,7 +1061,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
         std::vector<Vec3> p = proj.project(x);
         for (std::size_t i = 0; i < nv; ++i)
           if (pinned[i]) p[i] = pin_weight * x[i];
-        x = from_matrix(solver.solve(to_matrix(p) + ref_term));
+        x = from_matrix(solve_columns(solver, to_matrix(p) + ref_term));
         for (const auto& [v, q] : pins) x[v] = q;
       }
       // The normals of the landing triangles serve the first relaxation round (each round's closing

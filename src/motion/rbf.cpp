@@ -9,6 +9,7 @@
 #include <limits>
 
 #include <Eigen/Dense>
+#include <tbb/parallel_for.h>
 
 #include "contour4d/core/errors.h"
 
@@ -84,7 +85,8 @@ Vec3 RbfDeformer::apply(Vec3 p) const {
 }
 
 void RbfDeformer::apply(std::vector<Vec3>& points) const {
-  for (Vec3& p : points) p = apply(p);
+  // Each point on its own: the same result on any number of threads.
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) { points[i] = apply(points[i]); });
 }
 
 void deform_rbf(std::vector<Vec3>& points, const std::vector<Vec3>& src, const std::vector<Vec3>& dst, int steps,
