@@ -1210,7 +1210,12 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
             on_contour[i] = 1;
             ++fr.sliding;
           }
-        relax(opt.relax_iterations, opt.relax_sweeps * sweep_factor);
+        // A retry relaxes sweep_factor times as many rounds, each of relax_sweeps sweeps ended by an exact
+        // projection, not rounds sweep_factor times as long: within a round every vertex moves in the
+        // tangent plane it had at the round's start, and over 800 sweeps a crowded, strongly bent patch (a
+        // basal contour shrinking to a third in one frame) drifts off the surface and folds when projected
+        // back.
+        relax(opt.relax_iterations * sweep_factor, opt.relax_sweeps);
         // 3b. Chain vertices of matched contours onto their contour (the closest point), where their ring
         //     keeps its smallest angle (or 32°): the mesh then passes through the frame's contours, not only
         //     near them. They slide along it in the repair below. Elsewhere (a contour that shrank, crowding

@@ -53,7 +53,8 @@ struct MorphOptions {
                                    //!< vertex on it exactly there (as frame 0's resampled contours keep such corners)
   double retry_min_angle_deg = 25;  //!< a frame left with a triangle angle below this, fewer than retry_min_good_share
                                      //!< of its angles in 40–80° or crossing triangles is done again with no chain vertex
-                                     //!< put on a contour and retry_sweep_factor × the sweeps; the better is kept
+                                     //!< put on a contour and retry_sweep_factor × the relaxation rounds (each
+                                     //!< relax_sweeps sweeps and a projection); the better is kept
   double retry_min_good_share = 0.85;  //!< see retry_min_angle_deg
   int retry_attempts = 1;          //!< tries after the first, each with twice the sweeps of the one before (the first
                                    //!< retry: retry_sweep_factor ×), until one meets the criteria; the best is kept
