@@ -630,7 +630,9 @@ std::vector<std::uint32_t> breadth_first_order(const std::vector<std::size_t>& r
   for (std::size_t s = 0; s < nv; ++s) {
     if (seen[s]) continue;
     seen[s] = 1;
-    for (std::size_t head = order.size(), k = (order.push_back(static_cast<std::uint32_t>(s)), head); k < order.size(); ++k) {
+    std::size_t k = order.size();
+    order.push_back(static_cast<std::uint32_t>(s));
+    for (; k < order.size(); ++k) {
       const std::uint32_t v = order[k];
       for (std::size_t r = ring_start[v]; r < ring_start[v + 1]; ++r)
         if (!seen[ring_index[r]]) {
@@ -861,32 +863,19 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
   std::vector<std::vector<std::uint32_t>> incident(nv);
   for (std::size_t f = 0; f < frame0.triangles.size(); ++f)
     for (std::uint32_t v : frame0.triangles[f]) incident[v].push_back(static_cast<std::uint32_t>(f));
-  // Per vertex, the edges opposite it in its triangles, in the triangles' (outward) order.
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> opposite(nv);
-  for (const Triangle& tri : frame0.triangles)
-    for (std::size_t k = 0; k < 3; ++k) opposite[tri[k]].push_back({tri[(k + 1) % 3], tri[(k + 2) % 3]});
-  // Rest lengths of the relaxation springs: frame 0's edges, per vertex in neighbour order.
-  std::vector<std::vector<double>> rest(nv);
-  for (std::size_t i = 0; i < nv; ++i)
-    for (std::uint32_t j : nb[i]) rest[i].push_back(distance(frame0.positions[i], frame0.positions[j]));
-  // The same adjacency as flat arrays for the relaxation's inner loop.
-  std::vector<std::size_t> ring_start(nv + 1, 0), opp_start(nv + 1, 0);
-  std::vector<std::uint32_t> ring_index, opp_index;
-  std::vector<double> ring_rest;
+  // The same adjacency as flat arrays.
+  std::vector<std::size_t> ring_start(nv + 1, 0);
+  std::vector<std::uint32_t> ring_index;
   for (std::size_t i = 0; i < nv; ++i) {
     ring_index.insert(ring_index.end(), nb[i].begin(), nb[i].end());
-    ring_rest.insert(ring_rest.end(), rest[i].begin(), rest[i].end());
     ring_start[i + 1] = ring_index.size();
-    for (const auto& [j, k] : opposite[i]) {
-      opp_index.push_back(j);
-      opp_index.push_back(k);
-    }
-    opp_start[i + 1] = opp_index.size() / 2;
   }
   // The relaxation works on the vertices in breadth-first order: frame 0's numbering scatters neighbours
   // (left heart: median index gap 4,600 of 22,000 vertices), so every sweep's gathers of the rings missed
   // the cache. Its sweeps are Jacobi sweeps (each writes its own vertex from the last sweep's positions)
-  // and each ring keeps its neighbour order, so the order changes no result.
+  // and each ring keeps its neighbour order, so the order changes no result. Its inner loop reads, per
+  // position in that order: the ring (o_ring_*), the rest lengths of its springs (frame 0's edges) and the
+  // edges opposite the vertex in its triangles, in the triangles' (outward) order (o_opp_*).
   const std::vector<std::uint32_t> order = breadth_first_order(ring_start, ring_index);  // position → vertex
   std::vector<std::uint32_t> rank(nv);                                                  // vertex → position
   for (std::size_t k = 0; k < nv; ++k) rank[order[k]] = static_cast<std::uint32_t>(k);
@@ -894,18 +883,20 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
   std::vector<std::uint32_t> o_ring_index, o_opp_index;
   std::vector<double> o_ring_rest;
   o_ring_index.reserve(ring_index.size());
-  o_opp_index.reserve(opp_index.size());
-  o_ring_rest.reserve(ring_rest.size());
+  o_ring_rest.reserve(ring_index.size());
+  o_opp_index.reserve(6 * frame0.triangles.size());
   for (std::size_t k = 0; k < nv; ++k) {
     const std::uint32_t i = order[k];
-    for (std::size_t r = ring_start[i]; r < ring_start[i + 1]; ++r) {
-      o_ring_index.push_back(rank[ring_index[r]]);
-      o_ring_rest.push_back(ring_rest[r]);
+    for (std::uint32_t j : nb[i]) {
+      o_ring_index.push_back(rank[j]);
+      o_ring_rest.push_back(distance(frame0.positions[i], frame0.positions[j]));
     }
     o_ring_start[k + 1] = o_ring_index.size();
-    for (std::size_t r = opp_start[i]; r < opp_start[i + 1]; ++r) {
-      o_opp_index.push_back(rank[opp_index[2 * r]]);
-      o_opp_index.push_back(rank[opp_index[2 * r + 1]]);
+    for (std::uint32_t f : incident[i]) {
+      const Triangle& tri = frame0.triangles[f];
+      const std::size_t c = tri[0] == i ? 0 : tri[1] == i ? 1 : 2;
+      o_opp_index.push_back(rank[tri[(c + 1) % 3]]);
+      o_opp_index.push_back(rank[tri[(c + 2) % 3]]);
     }
     o_opp_start[k + 1] = o_opp_index.size() / 2;
   }
