@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/contour.h"
+#include "contour4d/core/sparse_solve.h"
 #include "contour4d/surface/surface_projector.h"
 
 namespace c4d {
@@ -141,7 +142,7 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
     }
     Eigen::SimplicialLDLT<Sparse> solver(M);
     if (solver.info() != Eigen::Success) break;
-    const Eigen::MatrixXd D = solver.solve(Eigen::MatrixXd(A.transpose() * R));
+    const Eigen::MatrixXd D = solve_ldlt(solver, Eigen::MatrixXd(A.transpose() * R));
     if (solver.info() != Eigen::Success || !D.allFinite()) break;
     for (std::size_t v = 0; v < nv; ++v)
       if (col[v] >= 0) {

@@ -29,6 +29,7 @@
 
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/errors.h"
+#include "contour4d/core/sparse_solve.h"
 #include "contour4d/metrics/quality.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/motion/contour_fit.h"
@@ -70,17 +71,6 @@ std::vector<Vec3> from_matrix(const Eigen::MatrixXd& m) {
     p[i] = {m(I, 0), m(I, 1), m(I, 2)};
   }
   return p;
-}
-
-// solver.solve(b) column by column, the columns in parallel: each column's solve is the same sequence
-// of operations as in the solve of the whole matrix, so the result is the same.
-Eigen::MatrixXd solve_columns(const Eigen::SimplicialLDLT<SparseMatrix>& solver, const Eigen::MatrixXd& b) {
-  Eigen::MatrixXd x(b.rows(), b.cols());
-  tbb::parallel_for(Eigen::Index(0), b.cols(), [&](Eigen::Index c) {
-    const Eigen::VectorXd col = solver.solve(b.col(c));
-    x.col(c) = col;
-  });
-  return x;
 }
 
 std::vector<Vec2> flatten(const Plane& pl, const std::vector<Vec3>& pts) {
@@ -413,6 +403,41 @@ std::vector<std::int32_t> nearest_to_planes(const std::vector<Vec3>& x, const st
   const std::size_t nv = x.size();
   std::vector<double> line_h(lines.size());
   for (std::size_t l = 0; l < lines.size(); ++l) line_h[l] = dot(lines[l].front(), normal);
+  // Whether a contour passes within `reach` of a point, as distance(closest_on_loop(...)) <= reach
+  // but faster: the contour's segments in runs of 16 with their bounding boxes, boxes farther than
+  // reach (with a margin well above rounding) skipped, and the first segment within reach ends it.
+  constexpr std::size_t kRun = 16;
+  std::vector<std::vector<std::array<Vec3, 2>>> boxes(lines.size());
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    const std::vector<Vec3>& L = lines[l];
+    for (std::size_t k0 = 0; k0 < L.size(); k0 += kRun) {
+      Vec3 lo = L[k0], hi = L[k0];
+      for (std::size_t k = k0; k <= std::min(k0 + kRun, L.size()); ++k) {
+        const Vec3 p = L[k % L.size()];
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+      }
+      boxes[l].push_back({lo, hi});
+    }
+  }
+  const double margin = 1e-6 * (1.0 + reach);
+  auto within = [&](std::size_t l, Vec3 q) {
+    const std::vector<Vec3>& L = lines[l];
+    const std::size_t n = L.size();
+    for (std::size_t b = 0; b < boxes[l].size(); ++b) {
+      const auto& [lo, hi] = boxes[l][b];
+      const Vec3 d{std::max({lo.x - q.x, 0.0, q.x - hi.x}), std::max({lo.y - q.y, 0.0, q.y - hi.y}),
+                   std::max({lo.z - q.z, 0.0, q.z - hi.z})};
+      if (norm(d) > reach + margin) continue;
+      for (std::size_t k = b * kRun; k < std::min(n, (b + 1) * kRun); ++k) {
+        const Vec3 a = L[k], e = L[(k + 1) % n] - a;
+        const double ee = dot(e, e);
+        const Vec3 p = a + (ee > 0 ? std::clamp(dot(q - a, e) / ee, 0.0, 1.0) : 0.0) * e;
+        if (distance(p, q) <= reach) return true;
+      }
+    }
+    return false;
+  };
   std::vector<std::int32_t> best_line(nv, -1);
   std::vector<double> best_gap(nv, std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < nv; ++i) {
@@ -429,8 +454,7 @@ std::vector<std::int32_t> nearest_to_planes(const std::vector<Vec3>& x, const st
         // Which contour of the slice: the one nearest the crossing.
         const double s = di == dj ? 0.5 : di / (di - dj);
         const Vec3 c = x[i] + s * (x[j] - x[i]);
-        std::int32_t hint = -1;
-        if (distance(closest_on_loop(lines[l], c, hint), c) > reach) continue;
+        if (!within(l, c)) continue;
         if (gap < best_gap[v]) {
           best_gap[v] = gap;
           best_line[v] = static_cast<std::int32_t>(l);
@@ -782,7 +806,7 @@ struct BiharmonicStep {
         return false;
       }
     }
-    const Eigen::MatrixXd d = solver.solve(rhs);
+    const Eigen::MatrixXd d = solve_ldlt(solver, rhs);
     if (solver.info() != Eigen::Success) return false;
     y.resize(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) {
@@ -1052,7 +1076,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
         std::vector<Vec3> p = proj.project(x);
         for (std::size_t i = 0; i < nv; ++i)
           if (pinned[i]) p[i] = pin_weight * x[i];
-        x = from_matrix(solve_columns(solver, to_matrix(p) + ref_term));
+        x = from_matrix(solve_ldlt(solver, to_matrix(p) + ref_term));
         for (const auto& [v, q] : pins) x[v] = q;
       }
       // The normals of the landing triangles serve the first relaxation round (each round's closing

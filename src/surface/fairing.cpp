@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "contour4d/core/sparse_solve.h"
+
 namespace c4d {
 
 bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const std::vector<char>& keep_shape,
@@ -104,7 +106,7 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
   Eigen::SimplicialLDLT<Sparse> solver;
   solver.compute(a);
   if (solver.info() != Eigen::Success) return false;
-  const Eigen::MatrixXd x = solver.solve(rhs);
+  const Eigen::MatrixXd x = solve_ldlt(solver, rhs);
   if (solver.info() != Eigen::Success || !x.allFinite()) return false;
   // A singular system (a free part without fixed vertex) shows as a tiny pivot.
   const auto d = solver.vectorD();
