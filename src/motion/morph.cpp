@@ -180,6 +180,13 @@ bool on_stride(std::size_t k, std::size_t stride, std::size_t count) {
   return stride > 0 && k % stride == 0 && (stride == 1 || k + stride / 2 < count);
 }
 
+// The point of segment [a, b] closest to q.
+Vec3 closest_on_segment(Vec3 a, Vec3 b, Vec3 q) {
+  const Vec3 e = b - a;
+  const double ee = dot(e, e);
+  return a + (ee > 0 ? std::clamp(dot(q - a, e) / ee, 0.0, 1.0) : 0.0) * e;
+}
+
 // Closest point to q on the closed polyline `loop`. `hint` is the segment found last time (-1: none,
 // then every segment is tried); the search walks from it while a neighbouring segment is closer, so a
 // point that moves a little along the contour costs a few segment tests.
@@ -189,9 +196,7 @@ Vec3 closest_on_loop(const std::vector<Vec3>& loop, Vec3 q, std::int32_t& hint) 
   Vec3 bp = q;
   std::size_t bk = 0;
   auto consider = [&](std::size_t k) {  // true when segment k is closer than the best so far
-    const Vec3 a = loop[k], e = loop[(k + 1) % n] - a;
-    const double ee = dot(e, e);
-    const Vec3 p = a + (ee > 0 ? std::clamp(dot(q - a, e) / ee, 0.0, 1.0) : 0.0) * e;
+    const Vec3 p = closest_on_segment(loop[k], loop[(k + 1) % n], q);
     const double d2 = dot(q - p, q - p);
     if (!(d2 < best)) return false;
     best = d2;
@@ -429,12 +434,8 @@ std::vector<std::int32_t> nearest_to_planes(const std::vector<Vec3>& x, const st
       const Vec3 d{std::max({lo.x - q.x, 0.0, q.x - hi.x}), std::max({lo.y - q.y, 0.0, q.y - hi.y}),
                    std::max({lo.z - q.z, 0.0, q.z - hi.z})};
       if (norm(d) > reach + margin) continue;
-      for (std::size_t k = b * kRun; k < std::min(n, (b + 1) * kRun); ++k) {
-        const Vec3 a = L[k], e = L[(k + 1) % n] - a;
-        const double ee = dot(e, e);
-        const Vec3 p = a + (ee > 0 ? std::clamp(dot(q - a, e) / ee, 0.0, 1.0) : 0.0) * e;
-        if (distance(p, q) <= reach) return true;
-      }
+      for (std::size_t k = b * kRun; k < std::min(n, (b + 1) * kRun); ++k)
+        if (distance(closest_on_segment(L[k], L[(k + 1) % n], q), q) <= reach) return true;
     }
     return false;
   };
