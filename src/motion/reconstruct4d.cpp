@@ -39,6 +39,7 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
       // Only the geometry of later frames is used (the morph projects onto it): no self-intersection test.
       // The small-angle repair stays: the relaxation takes its tangent planes from the landing triangles.
       so.rows = true;
+      so.rows_final_remesh_iterations = 0;  // the projection needs the geometry, not even triangles
       so.check_self_intersections = false;
     }
     return reconstruct_frame(seq, static_cast<int>(f), so, &rep.surfaces[f]);

@@ -854,7 +854,8 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
       const std::uint32_t a = n.chain[k], c = n.chain[(k + 1) % n.chain.size()];
       constrained.push_back({std::min(a, c), std::max(a, c)});
     }
-  if (manifold && opt.remesh && !opt.rows && opt.final_remesh_iterations > 0) {
+  const int final_rounds = opt.rows ? opt.rows_final_remesh_iterations : opt.final_remesh_iterations;
+  if (manifold && opt.remesh && final_rounds > 0) {
     // Where the contours had to be sampled finer than `edge` (tight bends keep within the contour
     // tolerance), triangles of `edge` against them would be poorly shaped: the target follows the
     // typical contour edge, down to half of `edge`.
@@ -867,7 +868,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     }
     RemeshOptions mo;
     mo.edge = target;
-    mo.iterations = opt.final_remesh_iterations;
+    mo.iterations = final_rounds;
     mo.engine = opt.remesher;
     mo.split_constraints = false;
     remesh_isotropic(mesh, constrained, fixed, mo);
