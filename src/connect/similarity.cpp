@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace c4d {
 namespace {
@@ -52,12 +53,74 @@ bool point_in_polygon(Vec2 p, const std::vector<Vec2>& poly) {
   return inside;
 }
 
+namespace {
+
+// The edges of a closed polygon (edge j joins p[j] and p[j + 1]) in horizontal bands of equal height
+// over its y range: each edge is listed in every band its y range touches, so every edge that can
+// meet a y range (a crossing, a ray at height y, a point within tol) is among the bands' edges. The
+// exact tests then run on those edges only, with the same arithmetic as a test of every edge.
+struct EdgeBands {
+  double y0 = 0, inv = 0;
+  std::size_t bands = 1;
+  std::vector<std::uint32_t> start, items;
+  std::vector<std::uint32_t> stamp;  // last query that listed an edge (lists each edge once per query)
+  std::uint32_t query = 0;
+
+  EdgeBands(const std::vector<Vec2>& p, const Box& box) {
+    const std::size_t m = p.size();
+    bands = std::max<std::size_t>(1, m / 4);
+    y0 = box.y0;
+    const double h = box.y1 - box.y0;
+    inv = h > 0 ? static_cast<double>(bands) / h : 0.0;
+    start.assign(bands + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<std::uint32_t> fill;
+      if (pass == 1) {
+        for (std::size_t k = 0; k < bands; ++k) start[k + 1] += start[k];
+        items.resize(start[bands]);
+        fill.assign(start.begin(), start.end() - 1);
+      }
+      for (std::size_t j = 0; j < m; ++j) {
+        const double lo = std::min(p[j].y, p[(j + 1) % m].y), hi = std::max(p[j].y, p[(j + 1) % m].y);
+        for (std::size_t k = band(lo), e = band(hi); k <= e; ++k) {
+          if (pass == 0) ++start[k + 1];
+          else items[fill[k]++] = static_cast<std::uint32_t>(j);
+        }
+      }
+    }
+    stamp.assign(m, 0);
+  }
+  std::size_t band(double y) const {
+    const double f = (y - y0) * inv;
+    if (!(f > 0)) return 0;
+    return std::min(bands - 1, static_cast<std::size_t>(f));
+  }
+  // Calls f(j) once for every edge listed in the bands that [lo, hi] touches.
+  template <class F>
+  void for_edges(double lo, double hi, F&& f) {
+    ++query;
+    for (std::size_t k = band(lo), e = band(hi); k <= e; ++k)
+      for (std::uint32_t i = start[k]; i < start[k + 1]; ++i) {
+        const std::uint32_t j = items[i];
+        if (stamp[j] == query) continue;
+        stamp[j] = query;
+        f(j);
+      }
+  }
+};
+
+}  // namespace
+
 double perimeter_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   if (a.size() < 2 || b.size() < 3) return 0.0;
   const Box bb = bounds(b);
   double total = 0.0, inside = 0.0;
   std::vector<double> ts;
   const std::size_t n = a.size(), m = b.size();
+  EdgeBands eb_index(b, bb);
+  // Band queries are widened by a margin far above rounding: an edge outside them cannot meet the range.
+  const double margin = 1e-6 * (bb.x1 - bb.x0 + bb.y1 - bb.y0) + 1e-12;
+  const double tol = 1e-9 * (bb.x1 - bb.x0 + bb.y1 - bb.y0);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 p = a[i], q = a[(i + 1) % n];
     const double len = norm(q - p);
@@ -66,20 +129,30 @@ double perimeter_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b) 
     const Box eb{std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)};
     if (disjoint(eb, bb)) continue;
     ts.assign({0.0, 1.0});
-    for (std::size_t j = 0; j < m; ++j) {
+    eb_index.for_edges(eb.y0 - margin, eb.y1 + margin, [&](std::uint32_t j) {
       double t = 0.0;
       if (crossing(p, q, b[j], b[(j + 1) % m], t)) ts.push_back(t);
-    }
+    });
     std::sort(ts.begin(), ts.end());
-    const double tol = 1e-9 * (bb.x1 - bb.x0 + bb.y1 - bb.y0);
     for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
       const double piece = (ts[k + 1] - ts[k]) * len;
       if (piece <= 0.0) continue;
       const Vec2 mid = p + (0.5 * (ts[k] + ts[k + 1])) * (q - p);
-      bool in = point_in_polygon(mid, b);
+      // point_in_polygon(mid, b) over the edges whose y range holds mid.y (the others cannot toggle it).
+      bool in = false;
+      if (mid.y >= bb.y0 && mid.y < bb.y1)
+        eb_index.for_edges(mid.y, mid.y, [&](std::uint32_t j) {
+          const Vec2 u = b[(j + 1) % m], w = b[j];
+          if ((u.y > mid.y) != (w.y > mid.y)) {
+            const double x = u.x + (mid.y - u.y) * (w.x - u.x) / (w.y - u.y);
+            if (mid.x < x) in = !in;
+          }
+        });
       if (!in) {
         // Pieces lying on b's boundary count as inside (identical contours score 1).
-        for (std::size_t j = 0; j < m && !in; ++j) in = segment_distance(mid, b[j], b[(j + 1) % m]) <= tol;
+        eb_index.for_edges(mid.y - tol - margin, mid.y + tol + margin, [&](std::uint32_t j) {
+          if (!in) in = segment_distance(mid, b[j], b[(j + 1) % m]) <= tol;
+        });
       }
       if (in) inside += piece;
     }

@@ -11,8 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "contour4d/surface/angle_repair.h"
 #include "contour4d/surface/isotropic_remesh.h"
@@ -94,15 +92,43 @@ double angle_at(const Vec3& p, const Vec3& q, const Vec3& r) {
 std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
                                 const FlipOptions& options) {
   using Edge = std::pair<std::uint32_t, std::uint32_t>;
-  auto key = [](std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; };
-  std::unordered_set<std::uint64_t> fixed_edges;
-  for (const auto& e : constrained) fixed_edges.insert(key(std::min(e[0], e[1]), std::max(e[0], e[1])));
-  // Directed edge a→b → triangle holding it.
-  std::unordered_map<std::uint64_t, std::size_t> owner;
   auto& tris = mesh.triangles;
-  owner.reserve(3 * tris.size());
+  // Directed edge a→b → triangle holding it, per vertex a (a few entries each: a linear scan beats a hash).
+  std::uint32_t nv = 0;
+  for (const auto& t : tris) nv = std::max({nv, t[0] + 1, t[1] + 1, t[2] + 1});
+  for (const auto& e : constrained) nv = std::max({nv, e[0] + 1, e[1] + 1});
+  std::vector<std::vector<std::pair<std::uint32_t, std::size_t>>> out(nv);
+  constexpr std::size_t none = static_cast<std::size_t>(-1);
+  auto owner_of = [&](std::uint32_t a, std::uint32_t b) {
+    for (const auto& [v, t] : out[a])
+      if (v == b) return t;
+    return none;
+  };
+  auto set_owner = [&](std::uint32_t a, std::uint32_t b, std::size_t t) {
+    for (auto& [v, u] : out[a])
+      if (v == b) {
+        u = t;
+        return;
+      }
+    out[a].push_back({b, t});
+  };
+  auto erase_owner = [&](std::uint32_t a, std::uint32_t b) {
+    auto& o = out[a];
+    for (std::size_t k = 0; k < o.size(); ++k)
+      if (o[k].first == b) {
+        o.erase(o.begin() + static_cast<std::ptrdiff_t>(k));
+        return;
+      }
+  };
   for (std::size_t t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) owner[key(tris[t][k], tris[t][(k + 1) % 3])] = t;
+    for (int k = 0; k < 3; ++k) set_owner(tris[t][k], tris[t][(k + 1) % 3], t);
+  // Contour edges, per lower vertex.
+  std::vector<std::vector<std::uint32_t>> fixed_edges(nv);
+  for (const auto& e : constrained) fixed_edges[std::min(e[0], e[1])].push_back(std::max(e[0], e[1]));
+  auto is_fixed = [&](std::uint32_t a, std::uint32_t b) {
+    const auto& f = fixed_edges[a];
+    return std::find(f.begin(), f.end(), b) != f.end();
+  };
   const auto& x = mesh.positions;
   const double cos_dihedral = std::cos(options.max_dihedral_deg * std::numbers::pi / 180.0);
   auto third = [&](std::size_t t, std::uint32_t a, std::uint32_t b) {
@@ -121,12 +147,11 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
     std::sort(edges.begin(), edges.end());
     for (const Edge& e : edges) {
       const auto [a, b] = e;
-      if (fixed_edges.count(key(a, b))) continue;
-      const auto i1 = owner.find(key(a, b)), i2 = owner.find(key(b, a));
-      if (i1 == owner.end() || i2 == owner.end()) continue;  // boundary or already flipped away
-      const std::size_t t1 = i1->second, t2 = i2->second;
+      if (is_fixed(a, b)) continue;
+      const std::size_t t1 = owner_of(a, b), t2 = owner_of(b, a);
+      if (t1 == none || t2 == none) continue;  // boundary or already flipped away
       const std::uint32_t c = third(t1, a, b), d = third(t2, a, b);
-      if (c == d || owner.count(key(c, d)) || owner.count(key(d, c))) continue;
+      if (c == d || owner_of(c, d) != none || owner_of(d, c) != none) continue;
       if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= std::numbers::pi + 1e-9) continue;
       if (options.only_below_deg > 0) {
         const double before = std::min(min_angle_deg(x[a], x[b], x[c]), min_angle_deg(x[b], x[a], x[d]));
@@ -145,12 +170,12 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
       // New triangles (c,a,d) and (c,d,b) must face the same way as the pair did (no fold).
       const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
       if (dot(m1, n) <= 0 || dot(m2, n) <= 0) continue;
-      owner.erase(key(a, b));
-      owner.erase(key(b, a));
+      erase_owner(a, b);
+      erase_owner(b, a);
       tris[t1] = {c, a, d};
       tris[t2] = {c, d, b};
       for (std::size_t t : {t1, t2})
-        for (int k = 0; k < 3; ++k) owner[key(tris[t][k], tris[t][(k + 1) % 3])] = t;
+        for (int k = 0; k < 3; ++k) set_owner(tris[t][k], tris[t][(k + 1) % 3], t);
       ++flipped_now;
     }
     flips += flipped_now;
