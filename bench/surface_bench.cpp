@@ -1,7 +1,8 @@
 // One-frame surface (issue 3): time of reconstruct_frame for one frame of each phantom and of the
 // real bivme data; the counter `vertices/s` is output vertices per second (target ≥ 100,000 on one
 // core at the default edge length). `_nocheck` variants leave out the CGAL self-intersection test;
-// `_fast_remesher` variants use our isotropic remeshing instead of CGAL's (SurfaceOptions::remesher).
+// `_fast_remesher` variants use our isotropic remeshing instead of CGAL's (SurfaceOptions::remesher);
+// `_rows` variants are `--fast --remesher fast` (SurfaceOptions::rows).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -13,10 +14,11 @@
 namespace {
 
 void run(benchmark::State& state, const c4d::Sequence& seq, bool check,
-         c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal) {
+         c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal, bool rows = false) {
   c4d::SurfaceOptions o;
   o.check_self_intersections = check;
   o.remesher = engine;
+  o.rows = rows;
   std::size_t vertices = 0;
   for (auto _ : state) {
     const c4d::TriangleMesh m = c4d::reconstruct_frame(seq, 0, o);
@@ -29,14 +31,14 @@ void run(benchmark::State& state, const c4d::Sequence& seq, bool check,
 }
 
 void phantom(benchmark::State& state, const std::string& name, bool oblique, bool check,
-             c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal) {
+             c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal, bool rows = false) {
   c4d::PhantomOptions po;
   po.oblique = oblique;
   const c4d::Phantom ph = c4d::make_phantom(name, po);
-  run(state, ph.contours, check, engine);
+  run(state, ph.contours, check, engine, rows);
 }
 
-void bivme(benchmark::State& state, bool check, c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal) {
+void bivme(benchmark::State& state, bool check, c4d::RemeshEngine engine = c4d::RemeshEngine::Cgal, bool rows = false) {
   const std::string dir = std::string(C4D_DATA_DIR) + "/bivme-patient1/guidepoints";
   c4d::Sequence seq;
   try {
@@ -45,7 +47,7 @@ void bivme(benchmark::State& state, bool check, c4d::RemeshEngine engine = c4d::
     state.SkipWithError(("cannot read " + dir + ": " + e.what()).c_str());
     return;
   }
-  run(state, seq, check, engine);
+  run(state, seq, check, engine, rows);
 }
 
 }  // namespace
@@ -66,5 +68,14 @@ BENCHMARK_CAPTURE(phantom, torus_fast_remesher, std::string("torus"), false, tru
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bivme, frame0_fast_remesher, true, c4d::RemeshEngine::Fast)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bivme, frame0_nocheck, false)->Unit(benchmark::kMillisecond);
+// `--fast --remesher fast` (SurfaceOptions::rows with our remesher): rows between slices instead of remeshing
+// every band, then the faired surface remeshed; the ratio to the default rows above.
+BENCHMARK_CAPTURE(phantom, left_heart_ed_rows, std::string("left-heart-ed"), false, true, c4d::RemeshEngine::Fast, true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(phantom, left_heart_es_rows, std::string("left-heart-es"), false, true, c4d::RemeshEngine::Fast, true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(phantom, torus_rows, std::string("torus"), false, true, c4d::RemeshEngine::Fast, true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(bivme, frame0_rows, true, c4d::RemeshEngine::Fast, true)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
