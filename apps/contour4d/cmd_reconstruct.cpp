@@ -241,9 +241,9 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       ->capture_default_str();
   app->add_flag("--fast", args->fast,
                "interpolated rows between slices instead of isotropic remeshing of every band, then 3 rounds of "
-               "remeshing of the faired surface: about 4x faster per frame (8x with --remesher fast); 94-97% of angles in "
-               "40-80 deg on the phantoms and real data, slab accuracy up to 15% lower than the default (left heart ES "
-               "0.021 against 0.018 mm mean)");
+               "remeshing of the faired surface: with --remesher fast 2-5x faster per frame, 94-97% of angles in "
+               "40-80 deg on the phantoms and real data, but farther from the true surface (left heart ES 0.022 "
+               "against 0.018 mm mean)");
   app->add_option("--threads", args->threads, "worker threads (0: all cores); output does not depend on it");
   commands.push_back({app, [args] { return run_reconstruct(*args); }});
 }

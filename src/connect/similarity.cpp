@@ -38,18 +38,19 @@ bool crossing(Vec2 p, Vec2 q, Vec2 a, Vec2 b, double& t) {
   return t > 0.0 && t < 1.0 && w >= 0.0 && w <= 1.0;
 }
 
+// Whether the edge from b to a crosses the ray from p towards +x (the even-odd rule's step).
+bool crosses_ray(Vec2 p, Vec2 a, Vec2 b) {
+  if ((a.y > p.y) == (b.y > p.y)) return false;
+  return p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+}
+
 }  // namespace
 
 bool point_in_polygon(Vec2 p, const std::vector<Vec2>& poly) {
   bool inside = false;
   const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2 a = poly[i], b = poly[j];
-    if ((a.y > p.y) != (b.y > p.y)) {
-      const double x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
-      if (p.x < x) inside = !inside;
-    }
-  }
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+    if (crosses_ray(p, poly[i], poly[j])) inside = !inside;
   return inside;
 }
 
@@ -142,11 +143,7 @@ double perimeter_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b) 
       bool in = false;
       if (mid.y >= bb.y0 && mid.y < bb.y1)
         eb_index.for_edges(mid.y, mid.y, [&](std::uint32_t j) {
-          const Vec2 u = b[(j + 1) % m], w = b[j];
-          if ((u.y > mid.y) != (w.y > mid.y)) {
-            const double x = u.x + (mid.y - u.y) * (w.x - u.x) / (w.y - u.y);
-            if (mid.x < x) in = !in;
-          }
+          if (crosses_ray(mid, b[(j + 1) % m], b[j])) in = !in;
         });
       if (!in) {
         // Pieces lying on b's boundary count as inside (identical contours score 1).

@@ -94,9 +94,7 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
   using Edge = std::pair<std::uint32_t, std::uint32_t>;
   auto& tris = mesh.triangles;
   // Directed edge a→b → triangle holding it, per vertex a (a few entries each: a linear scan beats a hash).
-  std::uint32_t nv = 0;
-  for (const auto& t : tris) nv = std::max({nv, t[0] + 1, t[1] + 1, t[2] + 1});
-  for (const auto& e : constrained) nv = std::max({nv, e[0] + 1, e[1] + 1});
+  const std::size_t nv = mesh.positions.size();
   std::vector<std::vector<std::pair<std::uint32_t, std::size_t>>> out(nv);
   constexpr std::size_t none = static_cast<std::size_t>(-1);
   auto owner_of = [&](std::uint32_t a, std::uint32_t b) {

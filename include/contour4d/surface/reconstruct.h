@@ -40,7 +40,7 @@ struct SurfaceOptions {
   Tiling tiling = Tiling::Bands;  //!< triangulation between slices (Delaunay falls back to Bands, with a warning,
                                   //!< on a slice pair it cannot tile)
   bool rows = false;             //!< true: 1→1 bands get interpolated rows about edge·√3/2 apart instead of
-                                 //!< remeshing (about 4× faster; the faired surface is evened out by
+                                 //!< remeshing (2–5× faster with RemeshEngine::Fast; the faired surface is evened out by
                                  //!< rows_final_remesh_iterations rounds of remeshing)
   bool remesh = true;            //!< isotropic remeshing (CGAL) of the bands without rows (branchings; all bands when rows = false)
   int remesh_iterations = 5;     //!< remeshing rounds of each band before fairing (remesher = Cgal)
