@@ -11,7 +11,8 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "contour4d/metrics/topology.h"
 
@@ -35,10 +36,12 @@ Vec3 face_normal(const std::vector<Vec3>& x, const Triangle& t) {
 }
 
 // Triangles binned by the cells their bounding boxes touch: the candidates that a moved vertex's
-// triangles could cut through.
+// triangles could cut through. One sorted array of (cell key, triangle) pairs rather than a hash map of
+// lists: binning is a sort instead of tens of thousands of small allocations, and a cell's triangles are
+// a binary search away.
 struct TriangleGrid {
   double cell = 1.0;
-  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> bins;
+  std::vector<std::pair<std::int64_t, std::uint32_t>> entries;  // sorted by key, then triangle
   static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) {
     return (i & 0x1fffff) | ((j & 0x1fffff) << 21) | ((k & 0x1fffff) << 42);
   }
@@ -48,6 +51,12 @@ struct TriangleGrid {
     for (std::int64_t i = at(lo.x); i <= at(hi.x); ++i)
       for (std::int64_t j = at(lo.y); j <= at(hi.y); ++j)
         for (std::int64_t k = at(lo.z); k <= at(hi.z); ++k) f(key(i, j, k));
+  }
+  // Calls f(triangle) for every triangle binned in cell `k`.
+  template <class F>
+  void triangles_in(std::int64_t k, F&& f) const {
+    auto it = std::lower_bound(entries.begin(), entries.end(), std::pair<std::int64_t, std::uint32_t>{k, 0});
+    for (; it != entries.end() && it->first == k; ++it) f(it->second);
   }
 };
 
@@ -59,17 +68,20 @@ void grow(Vec3& lo, Vec3& hi, Vec3 p) {
 TriangleGrid bin_triangles(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles) {
   TriangleGrid g;
   std::vector<double> lengths;
+  lengths.reserve(triangles.size());
   for (const Triangle& t : triangles) lengths.push_back(distance(x[t[0]], x[t[1]]));
   if (!lengths.empty()) {
     std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
     g.cell = std::max(1e-6, 2.0 * lengths[lengths.size() / 2]);
   }
+  g.entries.reserve(2 * triangles.size());
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (std::uint32_t w : triangles[f]) grow(lo, hi, x[w]);
     if (!is_finite(lo) || !is_finite(hi)) continue;
-    g.visit(lo, hi, [&](std::int64_t k) { g.bins[k].push_back(static_cast<std::uint32_t>(f)); });
+    g.visit(lo, hi, [&](std::int64_t k) { g.entries.push_back({k, static_cast<std::uint32_t>(f)}); });
   }
+  std::sort(g.entries.begin(), g.entries.end());
   return g;
 }
 
@@ -83,10 +95,7 @@ bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& tr
   // Neighbours moved since binning by well under a cell: widen the box by half a cell.
   const Vec3 pad{0.5 * grid.cell, 0.5 * grid.cell, 0.5 * grid.cell};
   std::vector<std::uint32_t> near;
-  grid.visit(lo - pad, hi + pad, [&](std::int64_t k) {
-    const auto it = grid.bins.find(k);
-    if (it != grid.bins.end()) near.insert(near.end(), it->second.begin(), it->second.end());
-  });
+  grid.visit(lo - pad, hi + pad, [&](std::int64_t k) { grid.triangles_in(k, [&](std::uint32_t f) { near.push_back(f); }); });
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
   return intersects_any(x, triangles, fs, near);
