@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -1112,6 +1113,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
           for (const auto& [lo, hi] : zones) saddle_zone[i] = saddle_zone[i] || (h >= lo && h <= hi);
         }
       }
+      double settled = opt.relax_settled;  // 0 in a retry: its rounds run all their sweeps
       auto relax = [&](int rounds, int sweeps) {
         // Everything the sweeps read, in the breadth-first order (position k is vertex order[k]).
         std::vector<char> held_k(nv), slides_k(nv), zone_k(nv);
@@ -1130,8 +1132,12 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
           std::fill(vel.begin(), vel.end(), Vec3{});
           moved = xs;
           const double beta = opt.relax_momentum;
+          // A round ends early once the sweeps have settled (MorphOptions::relax_settled; not in a retry).
+          const double settled2 = std::pow(std::max(0.0, settled) * median_edge, 2);
           for (int sweep = 0; sweep < sweeps; ++sweep) {
+            std::atomic<double> largest{0.0};  // the sweep's largest squared move (a maximum: any order gives it)
             tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
+              double biggest = 0.0;
               for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 if (held_k[i]) continue;
                 const Vec3 xi = xs[i], n = ns[i];
@@ -1205,9 +1211,14 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
                   moved[i] = slide(order[i], moved[i]);
                   vel[i] = moved[i] - xi;
                 }
+                biggest = std::max(biggest, dot(vel[i], vel[i]));
+              }
+              double seen = largest.load();
+              while (biggest > seen && !largest.compare_exchange_weak(seen, biggest)) {
               }
             });
             std::swap(xs, moved);
+            if (settled2 > 0 && largest.load() < settled2) break;
           }
           for (std::size_t k = 0; k < nv; ++k) x[order[k]] = xs[k];
           std::vector<Vec3> q = proj.project(x, &normals);
@@ -1231,6 +1242,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
       for (int attempt = 0;; ++attempt) {
         if (attempt >= 1) {
           curv_dev = 0;
+          settled = 0;
           sweep_factor = attempt == 1 ? std::max(1, opt.retry_sweep_factor) : 2 * sweep_factor;
           x = x_start;
           normals = normals_start;

@@ -68,6 +68,9 @@ struct MorphOptions {
                                    //!< up to 2.6 points more of 40–80° for a fifth more time; morph.md, Relaxation)
   int relax_sweeps = 100;          //!< sweeps per round in the tangent planes (with momentum, as good as 1600
                                    //!< plain Jacobi sweeps)
+  double relax_settled = 0.01;     //!< a relaxation round stops before relax_sweeps once no vertex moved more than this
+                                   //!< × the median edge in its last sweep (0: always relax_sweeps). Not in a retry
+                                   //!< (retry_min_angle_deg). Cycle phantoms 20–25 % faster, same quality (morph.md)
   double relax_step = 0.5;         //!< fraction of the tangential move per sweep
   bool vertical_deformation = false;  //!< Lim et al.'s sine vertical pre-deformation (eq. 10, Table 1) at slices whose
                                       //!< contours split or merge, before the matching (vertical_deformation.h)
