@@ -8,6 +8,7 @@
 #include "contour4d/surface/angle_repair.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -36,27 +37,26 @@ Vec3 face_normal(const std::vector<Vec3>& x, const Triangle& t) {
 }
 
 // Triangles binned by the cells their bounding boxes touch: the candidates that a moved vertex's
-// triangles could cut through. One sorted array of (cell key, triangle) pairs rather than a hash map of
-// lists: binning is a sort instead of tens of thousands of small allocations, and a cell's triangles are
-// a binary search away.
+// triangles could cut through. A dense block of cells over the triangles' extent, each with its
+// triangles in one flat array (count, prefix sum, fill: no hashing, no per-cell allocation); cells
+// outside the block hold no triangle.
 struct TriangleGrid {
   double cell = 1.0;
-  std::vector<std::pair<std::int64_t, std::uint32_t>> entries;  // sorted by key, then triangle
-  static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) {
-    return (i & 0x1fffff) | ((j & 0x1fffff) << 21) | ((k & 0x1fffff) << 42);
-  }
-  std::int64_t at(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
+  std::int64_t lo[3] = {0, 0, 0}, size[3] = {0, 0, 0};
+  std::vector<std::uint32_t> start;  // per cell, into items; one more at the end
+  std::vector<std::uint32_t> items;  // triangles, cell by cell, each cell's in increasing order
+  // The cell index along one axis (clamped far beyond any mesh, so that the conversion stays defined).
+  std::int64_t at(double v) const { return static_cast<std::int64_t>(std::clamp(std::floor(v / cell), -1e15, 1e15)); }
+  // Calls f(cell index) for every cell of the block that the box [a, b] touches.
   template <class F>
-  void visit(Vec3 lo, Vec3 hi, F&& f) const {
-    for (std::int64_t i = at(lo.x); i <= at(hi.x); ++i)
-      for (std::int64_t j = at(lo.y); j <= at(hi.y); ++j)
-        for (std::int64_t k = at(lo.z); k <= at(hi.z); ++k) f(key(i, j, k));
-  }
-  // Calls f(triangle) for every triangle binned in cell `k`.
-  template <class F>
-  void triangles_in(std::int64_t k, F&& f) const {
-    auto it = std::lower_bound(entries.begin(), entries.end(), std::pair<std::int64_t, std::uint32_t>{k, 0});
-    for (; it != entries.end() && it->first == k; ++it) f(it->second);
+  void visit(Vec3 a, Vec3 b, F&& f) const {
+    const std::int64_t from[3] = {std::max(at(a.x), lo[0]), std::max(at(a.y), lo[1]), std::max(at(a.z), lo[2])};
+    const std::int64_t to[3] = {std::min(at(b.x), lo[0] + size[0] - 1), std::min(at(b.y), lo[1] + size[1] - 1),
+                                std::min(at(b.z), lo[2] + size[2] - 1)};
+    for (std::int64_t i = from[0]; i <= to[0]; ++i)
+      for (std::int64_t j = from[1]; j <= to[1]; ++j)
+        for (std::int64_t k = from[2]; k <= to[2]; ++k)
+          f(static_cast<std::size_t>(((i - lo[0]) * size[1] + (j - lo[1])) * size[2] + (k - lo[2])));
   }
 };
 
@@ -74,14 +74,38 @@ TriangleGrid bin_triangles(const std::vector<Vec3>& x, const std::vector<Triangl
     std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
     g.cell = std::max(1e-6, 2.0 * lengths[lengths.size() / 2]);
   }
-  g.entries.reserve(2 * triangles.size());
+  // Each finite triangle's box, and the extent of them all.
+  std::vector<std::array<Vec3, 2>> boxes(triangles.size());
+  std::vector<char> finite(triangles.size(), 0);
+  Vec3 all_lo{1e300, 1e300, 1e300}, all_hi{-1e300, -1e300, -1e300};
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (std::uint32_t w : triangles[f]) grow(lo, hi, x[w]);
     if (!is_finite(lo) || !is_finite(hi)) continue;
-    g.visit(lo, hi, [&](std::int64_t k) { g.entries.push_back({k, static_cast<std::uint32_t>(f)}); });
+    boxes[f] = {lo, hi};
+    finite[f] = 1;
+    grow(all_lo, all_hi, lo);
+    grow(all_lo, all_hi, hi);
   }
-  std::sort(g.entries.begin(), g.entries.end());
+  if (!(all_lo.x <= all_hi.x)) return g;  // no finite triangle: an empty block
+  // The cell doubles until the block holds at most 8 cells per triangle (or 4096): a coarser cell only
+  // adds candidates, and the test on them is exact.
+  for (;;) {
+    g.lo[0] = g.at(all_lo.x), g.lo[1] = g.at(all_lo.y), g.lo[2] = g.at(all_lo.z);
+    g.size[0] = g.at(all_hi.x) - g.lo[0] + 1, g.size[1] = g.at(all_hi.y) - g.lo[1] + 1, g.size[2] = g.at(all_hi.z) - g.lo[2] + 1;
+    const double cells = static_cast<double>(g.size[0]) * static_cast<double>(g.size[1]) * static_cast<double>(g.size[2]);
+    if (cells <= std::max(4096.0, 8.0 * static_cast<double>(triangles.size()))) break;
+    g.cell *= 2.0;
+  }
+  const auto ncells = static_cast<std::size_t>(g.size[0] * g.size[1] * g.size[2]);
+  g.start.assign(ncells + 1, 0);
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    if (finite[f]) g.visit(boxes[f][0], boxes[f][1], [&](std::size_t c) { ++g.start[c + 1]; });
+  for (std::size_t c = 0; c < ncells; ++c) g.start[c + 1] += g.start[c];
+  g.items.resize(g.start[ncells]);
+  std::vector<std::uint32_t> fill(g.start.begin(), g.start.end() - 1);
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    if (finite[f]) g.visit(boxes[f][0], boxes[f][1], [&](std::size_t c) { g.items[fill[c]++] = static_cast<std::uint32_t>(f); });
   return g;
 }
 
@@ -95,7 +119,9 @@ bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& tr
   // Neighbours moved since binning by well under a cell: widen the box by half a cell.
   const Vec3 pad{0.5 * grid.cell, 0.5 * grid.cell, 0.5 * grid.cell};
   std::vector<std::uint32_t> near;
-  grid.visit(lo - pad, hi + pad, [&](std::int64_t k) { grid.triangles_in(k, [&](std::uint32_t f) { near.push_back(f); }); });
+  grid.visit(lo - pad, hi + pad, [&](std::size_t c) {
+    near.insert(near.end(), grid.items.begin() + grid.start[c], grid.items.begin() + grid.start[c + 1]);
+  });
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
   return intersects_any(x, triangles, fs, near);
