@@ -77,6 +77,29 @@ TEST(AngleRepair, PushedVerticesComeBackOnThePlaneAndFixedOnesStay) {
   for (std::size_t v = 0; v < m.positions.size(); ++v) EXPECT_TRUE(again.positions[v] == m.positions[v]);
 }
 
+// The ring-crossing test bins the triangles in a dense block of cells over the mesh's extent, coarsened
+// when the extent is huge against the edges: a far, separate patch then only adds candidates, and the
+// repaired grid is the same to the bit.
+TEST(AngleRepair, AFarPatchChangesNothingOnTheGrid) {
+  const int n = 8;
+  c4d::TriangleMesh m = grid(n, 1.0);
+  m.positions[static_cast<std::size_t>(3 * (n + 1) + 3)] = {3.85, 3.1, 0};
+  m.positions[static_cast<std::size_t>(5 * (n + 1) + 4)] = {4.05, 5.9, 0};
+  c4d::TriangleMesh far = m;
+  const auto base = static_cast<std::uint32_t>(far.positions.size());
+  for (const Vec3& p : m.positions) far.positions.push_back({p.x + 1e6, p.y - 2e5, p.z + 3e5});
+  for (const Triangle& t : m.triangles) far.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  std::vector<char> fixed = boundary(n);
+  std::vector<char> fixed_far = fixed;
+  fixed_far.insert(fixed_far.end(), fixed.size(), 1);  // the far patch stays
+  auto plane = [](std::uint32_t, Vec3 p) { return Vec3{p.x, p.y, p.z}; };
+  const std::size_t moves = c4d::repair_small_angles(m.positions, m.triangles, fixed, plane);
+  const std::size_t moves_far = c4d::repair_small_angles(far.positions, far.triangles, fixed_far, plane);
+  EXPECT_GT(moves, 0u);
+  EXPECT_EQ(moves, moves_far);
+  for (std::size_t v = 0; v < m.positions.size(); ++v) EXPECT_TRUE(far.positions[v] == m.positions[v]) << v;
+}
+
 TEST(AngleRepair, GoodMeshIsLeftAlone) {
   c4d::TriangleMesh m = grid(6, 1.0);  // right isosceles triangles: 45° everywhere
   const auto before = m.positions;
