@@ -631,22 +631,24 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
                                         : merge_with_bridges(lower, nodes, slices[s].plane, rise, opt.edge, b);
       const auto uc = upper.size() == 1 ? nodes[upper[0]].chain
                                         : merge_with_bridges(upper, nodes, slices[s + 1].plane, -rise, opt.edge, b);
-      const int intervals = std::max(1, static_cast<int>(std::lround(gap / (opt.edge * std::sqrt(3.0) / 2.0))));
-      if (opt.rows && lower.size() == 1 && upper.size() == 1 && intervals > 1) {
+      if (opt.rows && lower.size() == 1 && upper.size() == 1) {
         // Rows between the two contours, tiled pairwise: well-shaped triangles without remeshing.
-        const auto rows = interpolate_rows(lc, uc, b.positions, intervals);
-        std::vector<std::uint32_t> prev = lc;
-        for (std::size_t row = 0; row <= rows.size(); ++row) {
-          std::vector<std::uint32_t> next;
-          if (row < rows.size())
-            for (const Vec3& p : rows[row]) next.push_back(b.add(p));
-          else
-            next = uc;
-          const auto tris = tile_chains(prev, next, b.positions);
-          b.triangles.insert(b.triangles.end(), tris.begin(), tris.end());
-          prev = std::move(next);
+        const double spacing = opt.row_spacing > 0 ? opt.row_spacing : opt.edge;
+        const auto rows = interpolate_rows(lc, uc, b.positions, spacing);
+        if (!rows.empty()) {
+          std::vector<std::uint32_t> prev = lc;
+          for (std::size_t row = 0; row <= rows.size(); ++row) {
+            std::vector<std::uint32_t> next;
+            if (row < rows.size())
+              for (const Vec3& p : rows[row]) next.push_back(b.add(p));
+            else
+              next = uc;
+            const auto tris = tile_chains(prev, next, b.positions);
+            b.triangles.insert(b.triangles.end(), tris.begin(), tris.end());
+            prev = std::move(next);
+          }
+          continue;
         }
-        continue;
       }
       // 1→n / n→1: each vertex of the single contour may only be joined to the contour of the other
       // side it is nearest to (in the plane) or to a bridge, so the band cannot fold across a bridge.

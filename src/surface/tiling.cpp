@@ -156,13 +156,22 @@ std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const
 
 std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>& lower,
                                                 const std::vector<std::uint32_t>& upper,
-                                                const std::vector<Vec3>& positions, int intervals) {
+                                                const std::vector<Vec3>& positions, double spacing) {
   std::vector<std::vector<Vec3>> rows;
   const std::size_t n = lower.size(), m = upper.size();
-  if (n < 3 || m < 3 || intervals < 2) return rows;
+  if (n < 3 || m < 3 || !(spacing > 0)) return rows;
   const BandPath path = band_path(lower, upper, positions);
   if (path.states.empty()) return rows;
   const std::size_t spans = path.states.size() - 1;  // n + m spanning edges, the last equals the first
+  // The band's width across: its spanning edges' mean length (the slant height, not the slices' gap: a
+  // band between contours of very different size lies nearly flat).
+  double across = 0.0;
+  for (std::size_t k = 0; k < spans; ++k) {
+    const auto [i, j] = path.states[k];
+    across += distance(positions[lower[(path.i0 + i) % n]], positions[upper[(path.j0 + j) % m]]);
+  }
+  const int intervals = static_cast<int>(std::lround(across / static_cast<double>(spans) / spacing));
+  if (intervals < 2) return rows;
   for (int r = 1; r < intervals; ++r) {
     const double t = static_cast<double>(r) / intervals;
     std::vector<Vec3> q(spans);

@@ -426,21 +426,26 @@ Accuracy accuracy(const c4d::Phantom& ph, const c4d::TriangleMesh& m, bool confo
   return a;
 }
 
+// Both one-frame paths: interpolated rows (the default) and remeshed bands (SurfaceOptions::rows = false; the
+// 4D run's frame 0).
 TEST(ReconstructPhantoms, AccuracyVolumeAndQuality) {
+  for (const bool rows : {true, false})
   for (const std::string name : {"ellipsoid", "left-heart-ed", "left-heart-es", "torus", "bifurcation"})
     for (bool oblique : {false, true}) {
       c4d::PhantomOptions po;
       po.oblique = oblique;
       const c4d::Phantom ph = c4d::make_phantom(name, po);
+      c4d::SurfaceOptions so;
+      so.rows = rows;
       c4d::SurfaceReport rep;
-      const auto m = c4d::reconstruct_frame(ph.contours, 0, {}, &rep);
+      const auto m = c4d::reconstruct_frame(ph.contours, 0, so, &rep);
       const Accuracy a = accuracy(ph, m, !oblique);
-      std::printf("%-14s %-7s: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 %.1f %%, "
+      std::printf("%-5s %-14s %-7s: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 %.1f %%, "
                   "<25: %.3f %%, min %.1f deg, conformity mean %.4f mm%s\n",
-                  name.c_str(), oblique ? "oblique" : "", m.positions.size(), a.mean, a.max, 100 * a.volume_error,
+                  rows ? "rows" : "bands", name.c_str(), oblique ? "oblique" : "", m.positions.size(), a.mean, a.max, 100 * a.volume_error,
                   100 * a.angles.share_40_80, 100 * a.angles.share_below_25, a.angles.min_deg, a.conformity_mean,
                   rep.warnings.empty() ? "" : (" [" + rep.warnings[0] + "]").c_str());
-      SCOPED_TRACE(name + (oblique ? " oblique" : ""));
+      SCOPED_TRACE(name + (oblique ? " oblique" : "") + (rows ? " rows" : " bands"));
       EXPECT_TRUE(rep.closed);
       EXPECT_FALSE(rep.self_intersects);
       EXPECT_GT(rep.volume, 0.0);
@@ -466,8 +471,9 @@ TEST(ReconstructPhantoms, AccuracyVolumeAndQuality) {
     }
 }
 
-// SurfaceOptions::rows (`--fast`): interpolated rows instead of remeshing the bands, then the faired
-// surface remeshed (rows_final_remesh_iterations). Closed and well shaped on the phantoms and on biv-me's
+// SurfaceOptions::rows (the default): interpolated rows instead of remeshing the bands, then the faired
+// surface remeshed (rows_final_remesh_iterations). Closed and well shaped (issue 3: at least 90 % of the angles
+// in 40–80°; the left heart's ES frame keeps 91.8 %) with either remesher, on the phantoms and on biv-me's
 // coarse, irregular real contours (17.7 mm slices), where the faired rows alone kept 68.7 % of their angles
 // in 40–80° (rows_final_remesh_iterations = 0: the 4D run's later-frame targets).
 TEST(ReconstructPhantoms, RowsPathIsClosedAndWellShaped) {
@@ -486,7 +492,7 @@ TEST(ReconstructPhantoms, RowsPathIsClosedAndWellShaped) {
       EXPECT_TRUE(rep.closed);
       EXPECT_FALSE(rep.self_intersects);
       EXPECT_EQ(rep.euler, euler);
-      EXPECT_GT(a.share_40_80, 0.92);
+      EXPECT_GT(a.share_40_80, 0.90);
       EXPECT_LE(a.share_below_25, 0.0001);
       EXPECT_GT(a.min_deg, 20.0);
     }
@@ -511,6 +517,7 @@ TEST(ReconstructPhantoms, DelaunayTilingGivesClosedSurfaces) {
       const c4d::Phantom ph = c4d::make_phantom(name, po);
       c4d::SurfaceOptions so;
       so.tiling = c4d::Tiling::Delaunay;
+      so.rows = false;  // every band by the paper's tiling, not only the branchings
       c4d::SurfaceReport rep;
       const auto m = c4d::reconstruct_frame(ph.contours, 0, so, &rep);
       const Accuracy a = accuracy(ph, m, false);

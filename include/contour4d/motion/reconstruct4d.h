@@ -24,6 +24,10 @@ struct Reconstruct4DOptions {
                                       //!< the morph repairs its own triangles). With 8: left-heart cycle 9 %
                                       //!< and biv-me 28 % slower on 2 threads, biv-me's worst frame 86.9 →
                                       //!< 88.8 % of angles in 40–80° (morph.md, Speed)
+  bool frame0_rows = false;   //!< frame 0 by SurfaceOptions::rows too; false: by the remeshed bands path, whose
+                              //!< isotropic remeshing spreads the vertices that the morph carries through the
+                              //!< cycle evenly (with rows the left heart's ES frame keeps 86.6 % of its angles in
+                              //!< 40–80°, against 95.4 %; morph.md)
   std::function<void(const char* stage, int done, int total)> progress;  //!< optional progress callback
 };
 

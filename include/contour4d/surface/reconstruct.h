@@ -39,9 +39,12 @@ struct SurfaceOptions {
   double threshold = 0.3;        //!< similarity threshold of the connectivity tree (paper: 30 %)
   Tiling tiling = Tiling::Bands;  //!< triangulation between slices (Delaunay falls back to Bands, with a warning,
                                   //!< on a slice pair it cannot tile)
-  bool rows = false;             //!< true: 1→1 bands get interpolated rows about edge·√3/2 apart instead of
-                                 //!< remeshing (2–5× faster with RemeshEngine::Fast; the faired surface is evened out by
-                                 //!< rows_final_remesh_iterations rounds of remeshing)
+  bool rows = true;              //!< true: 1→1 bands get interpolated rows (row_spacing apart) instead of being
+                                 //!< remeshed; the faired surface is evened out by rows_final_remesh_iterations rounds
+                                 //!< of remeshing (1.5–2.4× faster per frame than false, the remeshed bands path)
+  double row_spacing = 0.0;      //!< rows: the rows' spacing across a band (mm), measured on the band's slant width
+                                 //!< (interpolate_rows); 0: edge. Rows one edge apart fair closer to the true surface
+                                 //!< than equilateral ones (edge·√3/2): left heart ES slab mean 0.0167 against 0.0211 mm
   bool remesh = true;            //!< isotropic remeshing (CGAL) of the bands without rows (branchings; all bands when rows = false)
   int remesh_iterations = 5;     //!< remeshing rounds of each band before fairing (remesher = Cgal)
   int fast_remesh_iterations = 10;  //!< the same with remesher = Fast (cheap rounds; left-heart ED slab max

@@ -30,13 +30,15 @@ std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const
                                   const std::vector<Vec3>& positions, const std::vector<int>& lower_group,
                                   const std::vector<int>& upper_group);
 
-//! Intermediate rows of the band between `lower` and `upper` (as in tile_chains) for a band cut into
-//! `intervals` layers: row r (1 ≤ r < intervals) lies at t = r / intervals on the spanning edges of
-//! the optimal tiling, resampled at equal arc length into round((1−t)·n + t·m) points, starting on
-//! the spanning edge from lower[0]; it runs the same way as the chains. Empty when intervals < 2.
+//! Intermediate rows of the band between `lower` and `upper` (as in tile_chains), about `spacing` apart
+//! across it: the band is cut into round(w / spacing) layers, w the mean length of the optimal tiling's
+//! spanning edges (the band's slant width, not the slices' gap), and row r (1 ≤ r < layers) lies at
+//! t = r / layers on the spanning edges, resampled at equal arc length into round((1−t)·n + t·m) points,
+//! starting on the spanning edge from lower[0]; it runs the same way as the chains. Empty when there
+//! would be fewer than 2 layers.
 std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>& lower,
                                                 const std::vector<std::uint32_t>& upper,
-                                                const std::vector<Vec3>& positions, int intervals);
+                                                const std::vector<Vec3>& positions, double spacing);
 
 //! Merges closed chain `b` into closed chain `a` through a bridge between their closest vertices
 //! (positions compared as given). `bridge` are the vertex ids of the bridge interior from a's side
