@@ -38,7 +38,8 @@ struct SurfaceOptions {
                                  //!< extrapolated_cap_volume); 0: faired domes as they are
   double threshold = 0.3;        //!< similarity threshold of the connectivity tree (paper: 30 %)
   Tiling tiling = Tiling::Bands;  //!< triangulation between slices (Delaunay falls back to Bands, with a warning,
-                                  //!< on a slice pair it cannot tile)
+                                  //!< on a slice pair it cannot tile). With rows, 1→1 bands get rows either way:
+                                  //!< Delaunay on every band needs rows = false (the CLI's --tiling delaunay sets it)
   bool rows = true;              //!< true: 1→1 bands get interpolated rows (row_spacing apart) instead of being
                                  //!< remeshed; the faired surface is evened out by rows_final_remesh_iterations rounds
                                  //!< of remeshing (1.5–2.4× faster per frame than false, the remeshed bands path)
