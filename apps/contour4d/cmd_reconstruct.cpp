@@ -36,7 +36,7 @@ struct ReconstructArgs {
   bool fast = false;
   bool no_rows = false;
   std::string tiling = "bands";
-  std::string remesher = "cgal";
+  std::string remesher = "auto";
 };
 
 nlohmann::json connections_json(const std::vector<Connection>& cs) {
@@ -72,7 +72,9 @@ int run_reconstruct(const ReconstructArgs& a) {
   opt.surface.rows = !a.no_rows && a.tiling != "delaunay";
   opt.frame0_rows = a.fast && opt.surface.rows;
   opt.surface.tiling = a.tiling == "delaunay" ? Tiling::Delaunay : Tiling::Bands;
-  opt.surface.remesher = a.remesher == "fast" ? RemeshEngine::Fast : RemeshEngine::Cgal;
+  // auto: the library's defaults (SurfaceOptions: CGAL's for the remeshed bands, ours with rows).
+  if (a.remesher != "auto")
+    opt.surface.remesher = opt.surface.rows_remesher = a.remesher == "fast" ? RemeshEngine::Fast : RemeshEngine::Cgal;
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
   opt.surface.cap_max_fill = a.cap_fill;
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
@@ -237,10 +239,11 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       ->check(CLI::IsMember({"bands", "delaunay"}))
       ->capture_default_str();
   app->add_option("--remesher", args->remesher,
-                  "isotropic remeshing of the surface: cgal (default: CGAL's) or fast (ours, the same algorithm on "
-                  "flat arrays: about 2x faster per frame, slab accuracy within about 10% of cgal's either way, "
-                  "smallest angles not guaranteed)")
-      ->check(CLI::IsMember({"cgal", "fast"}))
+                  "isotropic remeshing of the surface: auto (default: ours with interpolated rows, CGAL's with "
+                  "--no-rows), cgal (CGAL's) or fast (ours, the same algorithm on flat arrays: 1.3-2x faster per "
+                  "frame; with --no-rows slab accuracy within about 10% of cgal's either way and smallest angles not "
+                  "guaranteed)")
+      ->check(CLI::IsMember({"auto", "cgal", "fast"}))
       ->capture_default_str();
   app->add_flag("--fast", args->fast,
                "all frames: frame 0 by interpolated rows too (the default one-frame surface) instead of remeshed "

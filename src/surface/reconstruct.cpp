@@ -555,6 +555,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
 
   // Walls between connected contours.
   std::vector<Triangle> to_remesh;  // band triangles left for remeshing
+  const RemeshEngine engine = opt.rows ? opt.rows_remesher : opt.remesher;
   for (std::size_t s = 0; s + 1 < slices.size(); ++s) {
     if (pair_links[s].empty()) continue;
     std::vector<int> parent(nodes.size());
@@ -721,8 +722,8 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     if (pc.nonmanifold_edges == 0 && pc.nonmanifold_vertices == 0 && pc.misoriented_edges == 0) {
       RemeshOptions mo;
       mo.edge = opt.edge;
-      mo.iterations = opt.remesher == RemeshEngine::Fast ? opt.fast_remesh_iterations : opt.remesh_iterations;
-      mo.engine = opt.remesher;
+      mo.iterations = engine == RemeshEngine::Fast ? opt.fast_remesh_iterations : opt.remesh_iterations;
+      mo.engine = engine;
       mo.split_constraints = false;
       remesh_isotropic(part, constrained, part_fixed, mo);
     }
@@ -871,7 +872,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     RemeshOptions mo;
     mo.edge = target;
     mo.iterations = final_rounds;
-    mo.engine = opt.remesher;
+    mo.engine = engine;
     mo.split_constraints = false;
     remesh_isotropic(mesh, constrained, fixed, mo);
     flip_edges_delaunay(mesh, constrained);

@@ -120,8 +120,8 @@ TEST(IsotropicRemesh, PhantomSurfacesMatchCgalEngine) {
     SCOPED_TRACE(name);
     const c4d::Phantom ph = c4d::make_phantom(name, {});
     c4d::SurfaceOptions fast, cgal;
-    fast.remesher = c4d::RemeshEngine::Fast;
-    cgal.remesher = c4d::RemeshEngine::Cgal;
+    fast.remesher = fast.rows_remesher = c4d::RemeshEngine::Fast;
+    cgal.remesher = cgal.rows_remesher = c4d::RemeshEngine::Cgal;
     c4d::SurfaceReport rf, rc;
     const TriangleMesh mf = c4d::reconstruct_frame(ph.contours, 0, fast, &rf);
     const TriangleMesh mc = c4d::reconstruct_frame(ph.contours, 0, cgal, &rc);

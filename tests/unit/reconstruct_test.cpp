@@ -483,7 +483,7 @@ TEST(ReconstructPhantoms, RowsPathIsClosedAndWellShaped) {
     for (const c4d::RemeshEngine engine : {c4d::RemeshEngine::Cgal, c4d::RemeshEngine::Fast}) {
       c4d::SurfaceOptions so;
       so.rows = true;
-      so.remesher = engine;
+      so.rows_remesher = engine;
       c4d::SurfaceReport rep;
       const auto m = c4d::reconstruct_frame(seq, 0, so, &rep);
       const Angles a = angles(m);

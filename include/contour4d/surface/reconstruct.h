@@ -50,9 +50,14 @@ struct SurfaceOptions {
   int remesh_iterations = 5;     //!< remeshing rounds of each band before fairing (remesher = Cgal)
   int fast_remesh_iterations = 10;  //!< the same with remesher = Fast (cheap rounds; left-heart ED slab max
                                     //!< 0.55 mm after 5, 0.37 mm after 10)
-  RemeshEngine remesher = RemeshEngine::Cgal;  //!< implementation of both remeshings (refine.h): Cgal (default) or
-                                               //!< Fast (isotropic_remesh.h: about 2× faster per frame; the
-                                               //!< surface differs, slab accuracy within about ±10 % of Cgal's)
+  RemeshEngine remesher = RemeshEngine::Cgal;  //!< implementation of both remeshings (refine.h) with rows = false:
+                                               //!< Cgal (default) or Fast (isotropic_remesh.h: about 2× faster per
+                                               //!< frame; the surface differs, slab accuracy within about ±10 % of
+                                               //!< Cgal's, smallest angles not guaranteed)
+  RemeshEngine rows_remesher = RemeshEngine::Fast;  //!< the same with rows = true (branchings and the final remeshing):
+                                                    //!< Fast by default, 1.3–1.6× faster per frame than Cgal with
+                                                    //!< the same or better shapes and accuracy on every phantom and
+                                                    //!< on the real data (one_frame_surface.md)
   int final_remesh_iterations = 3;  //!< isotropic remeshing rounds of the whole faired surface, contours kept as
                                     //!< fixed chains of edges (evens out triangles that fairing stretched at
                                     //!< branchings and caps); 0: none. rows = true uses rows_final_remesh_iterations
