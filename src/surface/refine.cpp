@@ -26,7 +26,7 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 void remesh_isotropic(TriangleMesh& mesh, std::vector<std::array<std::uint32_t, 2>>& constrained,
                       std::vector<char>& fixed, const RemeshOptions& options) {
-  if (options.engine == RemeshEngine::Fast && !options.split_constraints && options.patch.empty() &&
+  if (options.engine == RemeshEngine::Fast && !options.split_constraints &&
       remesh_isotropic_fast(mesh, constrained, fixed, options.edge, options.iterations))
     return;
   Mesh sm;
@@ -44,21 +44,13 @@ void remesh_isotropic(TriangleMesh& mesh, std::vector<std::array<std::uint32_t, 
   fixed.resize(mesh.positions.size(), 0);
   for (std::size_t i = 0; i < fixed.size(); ++i)
     if (fixed[i]) vcm[vid[i]] = true;
-  const auto np = CGAL::parameters::number_of_iterations(static_cast<unsigned>(options.iterations))
-                      .edge_is_constrained_map(ecm)
-                      .vertex_is_constrained_map(vcm)
-                      .protect_constraints(!options.split_constraints)
-                      .collapse_constraints(false)
-                      .relax_constraints(false);
-  if (options.patch.empty()) {
-    PMP::isotropic_remeshing(faces(sm), options.edge, sm, np);
-  } else {
-    std::vector<Mesh::Face_index> patch;
-    for (auto f : sm.faces())
-      if (static_cast<std::size_t>(f) < options.patch.size() && options.patch[static_cast<std::size_t>(f)]) patch.push_back(f);
-    if (patch.empty()) return;
-    PMP::isotropic_remeshing(patch, options.edge, sm, np);
-  }
+  PMP::isotropic_remeshing(faces(sm), options.edge, sm,
+                           CGAL::parameters::number_of_iterations(static_cast<unsigned>(options.iterations))
+                               .edge_is_constrained_map(ecm)
+                               .vertex_is_constrained_map(vcm)
+                               .protect_constraints(!options.split_constraints)
+                               .collapse_constraints(false)
+                               .relax_constraints(false));
   sm.collect_garbage();
   // Back to plain arrays; vertices in Surface_mesh order (old ones keep their relative order).
   TriangleMesh out;

@@ -24,8 +24,6 @@ struct RemeshOptions {
   int iterations = 5;    //!< split/collapse/flip/relax rounds
   bool split_constraints = true;  //!< allow splitting contour edges longer than 4/3 edge (new vertices stay on them)
   RemeshEngine engine = RemeshEngine::Cgal;  //!< Fast (isotropic_remesh.h) is used unless split_constraints (CGAL only)
-  std::vector<char> patch;  //!< empty: remesh every triangle; else only triangles k with patch[k] != 0 (CGAL
-                            //!< engine; the patch's border edges are kept as they are, like contour edges)
 };
 
 //! Remeshes `mesh` in place. Edges listed in `constrained` (vertex pairs, any order) are kept as
