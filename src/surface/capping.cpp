@@ -18,6 +18,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -80,12 +81,66 @@ void mark_domain(CDT& cdt) {
   }
 }
 
-double boundary_distance(Vec2 p, const std::vector<std::vector<Vec2>>& loops) {
-  double d = std::numeric_limits<double>::infinity();
-  for (const auto& loop : loops)
-    for (std::size_t k = 0; k < loop.size(); ++k) d = std::min(d, segment_distance(p, loop[k], loop[(k + 1) % loop.size()]));
-  return d;
-}
+// Distance from a point to the nearest loop segment, through a grid of cells about one mean segment
+// long listing the segments whose bounding boxes meet them: rings of cells are searched outwards from
+// the point's cell until no closer segment can be left. The minimum of the same segment_distance values
+// as a scan of every segment, so the same bits (a cap of the torus: 6 000 points, 400 segments).
+class BoundaryDistance {
+ public:
+  explicit BoundaryDistance(const std::vector<std::vector<Vec2>>& loops) {
+    double length = 0.0;
+    for (const auto& loop : loops)
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const Vec2 a = loop[k], b = loop[(k + 1) % loop.size()];
+        segments_.push_back({a, b});
+        length += norm(b - a);
+        lo_ = {std::min({lo_.x, a.x, b.x}), std::min({lo_.y, a.y, b.y})};
+        hi_ = {std::max({hi_.x, a.x, b.x}), std::max({hi_.y, a.y, b.y})};
+      }
+    if (segments_.empty()) return;
+    cell_ = std::max(length / static_cast<double>(segments_.size()), 1e-9);
+    nx_ = std::clamp(static_cast<int>((hi_.x - lo_.x) / cell_) + 1, 1, 4096);
+    ny_ = std::clamp(static_cast<int>((hi_.y - lo_.y) / cell_) + 1, 1, 4096);
+    cell_ = std::max({cell_, (hi_.x - lo_.x) / nx_, (hi_.y - lo_.y) / ny_});
+    cells_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
+    for (std::size_t s = 0; s < segments_.size(); ++s) {
+      const auto [a, b] = segments_[s];
+      for (int j = cy(std::min(a.y, b.y)); j <= cy(std::max(a.y, b.y)); ++j)
+        for (int i = cx(std::min(a.x, b.x)); i <= cx(std::max(a.x, b.x)); ++i) cells_[index(i, j)].push_back(s);
+    }
+  }
+
+  double operator()(Vec2 p) const {
+    double d = std::numeric_limits<double>::infinity();
+    if (segments_.empty()) return d;
+    const int ci = cx(p.x), cj = cy(p.y);
+    // A point outside the grid: its distance to the grid's cells is not bounded by the ring count.
+    const bool inside = p.x >= lo_.x && p.x <= hi_.x && p.y >= lo_.y && p.y <= hi_.y;
+    const int rings = std::max(nx_, ny_);
+    for (int r = 0; r <= rings; ++r) {
+      for (int j = cj - r; j <= cj + r; ++j)
+        for (int i = ci - r; i <= ci + r; ++i) {
+          if (std::max(std::abs(i - ci), std::abs(j - cj)) != r || i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
+          for (std::size_t s : cells_[index(i, j)]) d = std::min(d, segment_distance(p, segments_[s][0], segments_[s][1]));
+        }
+      // Cells of ring r + 1 and beyond are at least r cells from a point within its own cell.
+      if (inside && d <= r * cell_) break;
+    }
+    return d;
+  }
+
+ private:
+  int cx(double x) const { return std::clamp(static_cast<int>((x - lo_.x) / cell_), 0, nx_ - 1); }
+  int cy(double y) const { return std::clamp(static_cast<int>((y - lo_.y) / cell_), 0, ny_ - 1); }
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i); }
+
+  std::vector<std::array<Vec2, 2>> segments_;
+  std::vector<std::vector<std::size_t>> cells_;
+  Vec2 lo_{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  Vec2 hi_{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  double cell_ = 1.0;
+  int nx_ = 1, ny_ = 1;
+};
 
 }  // namespace
 
@@ -96,6 +151,7 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
   if (style == CapStyle::Open || loop_points < 3) return cap;
 
   // Pass 1: interior points from the Delaunay mesher.
+  const BoundaryDistance boundary_distance(loops);
   std::vector<Vec2> interior;
   {
     CDT cdt;
@@ -108,7 +164,7 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
       if (original.count(v) || cdt.are_there_incident_constraints(v)) continue;
       const Vec2 p{v->point().x(), v->point().y()};
-      if (boundary_distance(p, loops) < 0.4 * options.edge) continue;  // would make slivers near the loop
+      if (boundary_distance(p) < 0.4 * options.edge) continue;  // would make slivers near the loop
       interior.push_back(p);
     }
     // Keep the order independent of CGAL's vertex storage: sort by position is not rigid-invariant,
@@ -154,7 +210,7 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
     std::vector<double> d(cap.points.size(), 0.0);
     double dmax = 0.0;
     for (std::size_t i = static_cast<std::size_t>(loop_points); i < cap.points.size(); ++i)
-      dmax = std::max(dmax, d[i] = boundary_distance(cap.points[i], loops));
+      dmax = std::max(dmax, d[i] = boundary_distance(cap.points[i]));
     const double h = std::min(options.height, dmax);
     for (std::size_t i = static_cast<std::size_t>(loop_points); i < cap.points.size(); ++i) {
       const double t = dmax > 0 ? std::min(1.0, d[i] / dmax) : 1.0;
