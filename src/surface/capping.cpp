@@ -235,23 +235,63 @@ double cap_height_of(const Vec3& p, const CapFrame& frame) {
   return std::clamp(frame.dir * (p.z - frame.z0), 0.0, frame.height);
 }
 
-double cap_volume_with(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame,
-                       double exponent) {
-  double volume = 0.0;
+// The vertices a triangle list uses (sorted, unique) and its triangles in indices into that list.
+struct LocalTriangles {
+  std::vector<std::uint32_t> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+LocalTriangles local_triangles(const std::vector<Triangle>& triangles) {
+  LocalTriangles out;
+  for (const Triangle& t : triangles) out.vertices.insert(out.vertices.end(), t.begin(), t.end());
+  std::sort(out.vertices.begin(), out.vertices.end());
+  out.vertices.erase(std::unique(out.vertices.begin(), out.vertices.end()), out.vertices.end());
   for (const Triangle& t : triangles) {
-    const double area = projected_area(positions[t[0]], positions[t[1]], positions[t[2]]);
-    double sum = 0.0;
-    for (std::uint32_t v : t) sum += lifted(cap_height_of(positions[v], frame), frame.height, exponent);
-    volume += area * sum / 3.0;
+    std::array<std::uint32_t, 3> local{};
+    for (std::size_t k = 0; k < 3; ++k)
+      local[k] = static_cast<std::uint32_t>(std::lower_bound(out.vertices.begin(), out.vertices.end(), t[k]) - out.vertices.begin());
+    out.triangles.push_back(local);
   }
-  return std::abs(volume);
+  return out;
 }
+
+// The cap's volume over its plane as a function of the lift's exponent: the projected areas and the
+// vertices' heights are taken once, and each call lifts every vertex once (fill_cap's bisection calls it
+// 60 times). The sums run in the triangles' order, as the direct formula would.
+class CapVolume {
+ public:
+  CapVolume(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame)
+      : height_(frame.height), local_(local_triangles(triangles)) {
+    for (std::uint32_t v : local_.vertices) u_.push_back(cap_height_of(positions[v], frame));
+    for (const Triangle& t : triangles) area_.push_back(projected_area(positions[t[0]], positions[t[1]], positions[t[2]]));
+    lifted_.resize(u_.size());
+  }
+
+  double operator()(double exponent) {
+    for (std::size_t k = 0; k < u_.size(); ++k) lifted_[k] = lifted(u_[k], height_, exponent);
+    double volume = 0.0;
+    for (std::size_t f = 0; f < local_.triangles.size(); ++f) {
+      double sum = 0.0;
+      for (std::uint32_t k : local_.triangles[f]) sum += lifted_[k];
+      volume += area_[f] * sum / 3.0;
+    }
+    return std::abs(volume);
+  }
+
+  const std::vector<std::uint32_t>& vertices() const { return local_.vertices; }
+
+ private:
+  double height_;
+  LocalTriangles local_;
+  std::vector<double> u_, lifted_;  // per vertex: height over the plane, lifted height
+  std::vector<double> area_;        // per triangle: projected area
+};
 
 }  // namespace
 
 double cap_volume(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame) {
   if (frame.height <= 0.0) return 0.0;
-  return cap_volume_with(positions, triangles, frame, 1.0);
+  return CapVolume(positions, triangles, frame)(1.0);
 }
 
 double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill) {
@@ -270,21 +310,18 @@ double extrapolated_cap_volume(double area, double neighbour_area, double spacin
 
 double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame, double target) {
   if (frame.height <= 0.0 || triangles.empty()) return 1.0;
-  if (cap_volume_with(positions, triangles, frame, 1.0) >= target) return 1.0;
+  CapVolume volume(positions, triangles, frame);
+  if (volume(1.0) >= target) return 1.0;
   double lo = 1.0, hi = 64.0;
-  if (cap_volume_with(positions, triangles, frame, hi) <= target) {
+  if (volume(hi) <= target) {
     lo = hi;
   } else {
     for (int it = 0; it < 60; ++it) {
       const double mid = 0.5 * (lo + hi);
-      (cap_volume_with(positions, triangles, frame, mid) < target ? lo : hi) = mid;
+      (volume(mid) < target ? lo : hi) = mid;
     }
   }
-  std::vector<std::uint32_t> vertices;
-  for (const Triangle& t : triangles) vertices.insert(vertices.end(), t.begin(), t.end());
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  for (std::uint32_t v : vertices) {
+  for (std::uint32_t v : volume.vertices()) {
     const double u = frame.dir * (positions[v].z - frame.z0);
     if (u > 0.0 && u < frame.height) positions[v].z = frame.z0 + frame.dir * lifted(u, frame.height, lo);
   }
@@ -307,23 +344,43 @@ Vec3 widened(const Vec3& p, const EndBand& band, double alpha) {
   return {c.x + k * (p.x - c.x), c.y + k * (p.y - c.y), p.z};
 }
 
-double band_volume_with(const std::vector<Vec3>& positions, const EndBand& band, double orientation, double alpha,
-                        const std::vector<char>& movable) {
-  // ∮ (z − z_ref) n_z dA over the wall and the end disk (the neighbouring disk adds 0).
-  double volume = 0.0;
-  for (const Triangle& t : band.triangles) {
-    Vec3 q[3];
-    for (int k = 0; k < 3; ++k) q[k] = movable[t[k]] ? widened(positions[t[k]], band, alpha) : positions[t[k]];
-    volume += orientation * projected_area(q[0], q[1], q[2]) * ((q[0].z + q[1].z + q[2].z) / 3.0 - band.z_ref);
+// The band's volume (∮ (z − z_ref) n_z dA over the wall and the end disk; the neighbouring disk adds 0)
+// as a function of the widening α: each call widens every movable vertex once (fill_end_band's bisection
+// calls it 50 times). The sums run in the triangles' order, as the direct formula would.
+class BandVolume {
+ public:
+  BandVolume(const std::vector<Vec3>& positions, const EndBand& band, double orientation, const std::vector<char>& movable)
+      : band_(band), orientation_(orientation), local_(local_triangles(band.triangles)) {
+    for (std::uint32_t v : local_.vertices) {
+      p_.push_back(positions[v]);
+      movable_.push_back(movable[v]);
+    }
+    q_.resize(p_.size());
   }
-  return volume + std::abs(band.z_end - band.z_ref) * band.area_end;
-}
+
+  double operator()(double alpha) {
+    for (std::size_t k = 0; k < p_.size(); ++k) q_[k] = movable_[k] ? widened(p_[k], band_, alpha) : p_[k];
+    double volume = 0.0;
+    for (const auto& t : local_.triangles) {
+      const Vec3 &a = q_[t[0]], &b = q_[t[1]], &c = q_[t[2]];
+      volume += orientation_ * projected_area(a, b, c) * ((a.z + b.z + c.z) / 3.0 - band_.z_ref);
+    }
+    return volume + std::abs(band_.z_end - band_.z_ref) * band_.area_end;
+  }
+
+ private:
+  const EndBand& band_;
+  double orientation_;
+  LocalTriangles local_;
+  std::vector<Vec3> p_, q_;  // per vertex of the band: position, widened position
+  std::vector<char> movable_;
+};
 
 }  // namespace
 
 double end_band_volume(const std::vector<Vec3>& positions, const EndBand& band, double orientation) {
   std::vector<char> none(positions.size(), 0);
-  return band_volume_with(positions, band, orientation, 0.0, none);
+  return BandVolume(positions, band, orientation, none)(0.0);
 }
 
 double hermite_band_volume(double a0, double a1, double m0, double m1, double h) {
@@ -333,14 +390,16 @@ double hermite_band_volume(double a0, double a1, double m0, double m1, double h)
 double fill_end_band(std::vector<Vec3>& positions, const EndBand& band, double target, double orientation) {
   std::vector<char> movable(positions.size(), 0);
   for (std::uint32_t v : band.movable) movable[v] = 1;
-  if (band.triangles.empty() || band_volume_with(positions, band, orientation, 0.0, movable) >= target) return 0.0;
+  if (band.triangles.empty()) return 0.0;
+  BandVolume volume(positions, band, orientation, movable);
+  if (volume(0.0) >= target) return 0.0;
   double lo = 0.0, hi = kMaxBandWidening;
-  if (band_volume_with(positions, band, orientation, hi, movable) <= target) {
+  if (volume(hi) <= target) {
     lo = hi;
   } else {
     for (int it = 0; it < 50; ++it) {
       const double mid = 0.5 * (lo + hi);
-      (band_volume_with(positions, band, orientation, mid, movable) < target ? lo : hi) = mid;
+      (volume(mid) < target ? lo : hi) = mid;
     }
   }
   for (std::uint32_t v : band.movable) positions[v] = widened(positions[v], band, lo);
