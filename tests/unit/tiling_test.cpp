@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "contour4d/core/contour.h"
@@ -153,6 +154,36 @@ TEST(Capping, CapCoversTheRegionAndKeepsLoopEdges) {
     if (style == c4d::CapStyle::Flat) EXPECT_EQ(hmax, 0.0);
     else EXPECT_NEAR(hmax, 2.0, 0.3);
     EXPECT_GT(cap.points.size(), outer.size() + hole.size());
+  }
+}
+
+// A Rounded dome's height is a circular profile of each interior point's distance to the nearest loop
+// segment (triangulate_cap finds it through a grid of segment cells): the same as scanning every
+// segment, to the bit, on a ring with a hole near one side and segments of very different lengths.
+TEST(Capping, DomeHeightsFollowTheExactDistanceToTheLoops) {
+  std::vector<Vec2> outer = ellipse(30, 12, 90);
+  outer.insert(outer.begin() + 10, Vec2{(outer[9].x + outer[10].x) / 2, (outer[9].y + outer[10].y) / 2});  // a short segment
+  const auto o = c4d::canonical_polygon(outer, true);
+  std::vector<Vec2> hole = ellipse(3, 2, 12);
+  for (Vec2& p : hole) p.x += 20;
+  const auto h = c4d::canonical_polygon(hole, false);
+  const auto cap = c4d::triangulate_cap({o, h}, c4d::CapStyle::Rounded, {1.0, 2.0});
+  const std::size_t loop_points = o.size() + h.size();
+  ASSERT_GT(cap.points.size(), loop_points + 100);
+  std::vector<double> d(cap.points.size(), 0.0);
+  double dmax = 0.0;
+  for (std::size_t i = loop_points; i < cap.points.size(); ++i) {
+    d[i] = std::numeric_limits<double>::infinity();
+    for (const auto* loop : {&o, &h})
+      for (std::size_t k = 0; k < loop->size(); ++k)
+        d[i] = std::min(d[i], c4d::segment_distance(cap.points[i], (*loop)[k], (*loop)[(k + 1) % loop->size()]));
+    dmax = std::max(dmax, d[i]);
+    EXPECT_GE(d[i], 0.4) << "interior point " << i << " within 0.4 edge of a loop";
+  }
+  const double top = std::min(2.0, dmax);
+  for (std::size_t i = loop_points; i < cap.points.size(); ++i) {
+    const double t = std::min(1.0, d[i] / dmax);
+    EXPECT_EQ(cap.height[i], top * std::sqrt(std::max(0.0, 1.0 - (1.0 - t) * (1.0 - t)))) << "point " << i;
   }
 }
 
