@@ -251,7 +251,7 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
                "86.6 against 95.4% of angles in 40-80 deg)");
   app->add_flag("--no-rows", args->no_rows,
                 "remesh every band between slices (CGAL isotropic remeshing) instead of interpolated rows one edge "
-                "apart: 1.5-2.4x slower per frame, slightly more even triangles (left heart ES 96.5 against 91.8% of "
+                "apart: 1.9-3.2x slower per frame, slightly more even triangles (left heart ES 96.5 against 92.2% of "
                 "angles in 40-80 deg), as close to the true surface (ES 0.018 against 0.017 mm mean)");
   app->add_option("--threads", args->threads, "worker threads (0: all cores); output does not depend on it");
   commands.push_back({app, [args] { return run_reconstruct(*args); }});

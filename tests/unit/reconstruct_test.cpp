@@ -475,7 +475,7 @@ TEST(ReconstructPhantoms, AccuracyVolumeAndQuality) {
 
 // SurfaceOptions::rows (the default): interpolated rows instead of remeshing the bands, then the faired
 // surface remeshed (rows_final_remesh_iterations). Closed and well shaped (issue 3: at least 90 % of the angles
-// in 40–80°; the left heart's ES frame keeps 91.8 %) with either remesher, on the phantoms and on biv-me's
+// in 40–80°; the left heart's ES frame keeps 91.8 % with CGAL's, 92.2 % with ours) with either remesher, on the phantoms and on biv-me's
 // coarse, irregular real contours (17.7 mm slices), where the faired rows alone kept 68.7 % of their angles
 // in 40–80° (rows_final_remesh_iterations = 0: the 4D run's later-frame targets).
 TEST(ReconstructPhantoms, RowsPathIsClosedAndWellShaped) {

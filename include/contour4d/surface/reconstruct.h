@@ -42,7 +42,7 @@ struct SurfaceOptions {
                                   //!< Delaunay on every band needs rows = false (the CLI's --tiling delaunay sets it)
   bool rows = true;              //!< true: 1→1 bands get interpolated rows (row_spacing apart) instead of being
                                  //!< remeshed; the faired surface is evened out by rows_final_remesh_iterations rounds
-                                 //!< of remeshing (1.5–2.4× faster per frame than false, the remeshed bands path)
+                                 //!< of remeshing (1.9–3.2× faster per frame than false, the remeshed bands path)
   double row_spacing = 0.0;      //!< rows: the rows' spacing across a band (mm), measured on the band's slant width
                                  //!< (interpolate_rows); 0: edge. Rows one edge apart fair closer to the true surface
                                  //!< than equilateral ones (edge·√3/2): left heart ES slab mean 0.0167 against 0.0211 mm
