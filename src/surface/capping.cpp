@@ -113,18 +113,21 @@ class BoundaryDistance {
   double operator()(Vec2 p) const {
     double d = std::numeric_limits<double>::infinity();
     if (segments_.empty()) return d;
+    // A point outside the grid (never one of a cap's interior points): the ring bound below does not
+    // hold for it, so every segment is scanned.
+    if (!(p.x >= lo_.x && p.x <= hi_.x && p.y >= lo_.y && p.y <= hi_.y)) {
+      for (const auto& [a, b] : segments_) d = std::min(d, segment_distance(p, a, b));
+      return d;
+    }
     const int ci = cx(p.x), cj = cy(p.y);
-    // A point outside the grid: its distance to the grid's cells is not bounded by the ring count.
-    const bool inside = p.x >= lo_.x && p.x <= hi_.x && p.y >= lo_.y && p.y <= hi_.y;
-    const int rings = std::max(nx_, ny_);
-    for (int r = 0; r <= rings; ++r) {
+    for (int r = 0; r <= std::max(nx_, ny_); ++r) {
       for (int j = cj - r; j <= cj + r; ++j)
         for (int i = ci - r; i <= ci + r; ++i) {
           if (std::max(std::abs(i - ci), std::abs(j - cj)) != r || i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
           for (std::size_t s : cells_[index(i, j)]) d = std::min(d, segment_distance(p, segments_[s][0], segments_[s][1]));
         }
       // Cells of ring r + 1 and beyond are at least r cells from a point within its own cell.
-      if (inside && d <= r * cell_) break;
+      if (d <= r * cell_) break;
     }
     return d;
   }
