@@ -17,86 +17,14 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "contour4d/surface/surface_walk.h"
+
 namespace c4d {
 namespace {
 
 constexpr std::int32_t kNone = -1;
 
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; }
-
-// Closest point to p on triangle (a, b, c) (Ericson, "Real-Time Collision Detection", 5.1.5).
-Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double sum = va + vb + vc;
-  if (!(sum > 0)) {  // degenerate triangle: the closest of its edges
-    auto on_segment = [&](const Vec3& s, const Vec3& e) {
-      const Vec3 se = e - s;
-      const double l = dot(se, se);
-      const double w = l > 0 ? std::clamp(dot(p - s, se) / l, 0.0, 1.0) : 0.0;
-      return s + w * se;
-    };
-    Vec3 best = on_segment(a, b);
-    for (const Vec3& q : {on_segment(b, c), on_segment(c, a)})
-      if (dot(p - q, p - q) < dot(p - best, p - best)) best = q;
-    return best;
-  }
-  const double denom = 1.0 / sum;
-  return a + (vb * denom) * ab + (vc * denom) * ac;
-}
-
-// The input surface, for projection: triangles, their patch, and vertex → triangles.
-struct Reference {
-  std::vector<Vec3> x;
-  std::vector<Triangle> t;
-  std::vector<std::int32_t> patch;
-  std::vector<std::uint32_t> start, tris;  // CSR: triangles around each vertex
-
-  double dist2(const Vec3& p, std::int32_t k, Vec3* q) const {
-    const Triangle& tr = t[static_cast<std::size_t>(k)];
-    *q = closest_on_triangle(p, x[tr[0]], x[tr[1]], x[tr[2]]);
-    const Vec3 d = p - *q;
-    return dot(d, d);
-  }
-
-  // Greedy descent over triangles sharing a vertex with the current one, within one patch.
-  Vec3 project(const Vec3& p, std::int32_t& hint) const {
-    Vec3 best_q;
-    double best = dist2(p, hint, &best_q);
-    const std::int32_t pid = patch[static_cast<std::size_t>(hint)];
-    for (int step = 0; step < 256; ++step) {
-      std::int32_t next = hint;
-      for (std::uint32_t v : t[static_cast<std::size_t>(hint)])
-        for (std::uint32_t k = start[v]; k < start[v + 1]; ++k) {
-          const auto cand = static_cast<std::int32_t>(tris[k]);
-          if (cand == hint || patch[static_cast<std::size_t>(cand)] != pid) continue;
-          Vec3 q;
-          const double d = dist2(p, cand, &q);
-          if (d < best) {
-            best = d;
-            best_q = q;
-            next = cand;
-          }
-        }
-      if (next == hint) break;
-      hint = next;
-    }
-    return best_q;
-  }
-};
 
 // Triangle-corner half-edge mesh: half-edge 3f + k runs from corner k to corner k + 1 of face f.
 struct Remesher {
@@ -107,7 +35,7 @@ struct Remesher {
   std::vector<char> face_dead, vert_dead, locked, bnd;  // bnd: on a boundary edge (never changes)
   std::vector<std::int32_t> out;  // per vertex: one outgoing half-edge
   std::vector<std::int32_t> face_hint, face_patch, vert_hint;
-  const Reference* ref = nullptr;
+  const SurfaceWalk* ref = nullptr;
   std::vector<std::int32_t> scratch;
 
   static std::int32_t face_of(std::int32_t h) { return h / 3; }
@@ -579,7 +507,7 @@ struct Remesher {
       if (vert_dead[v] || locked[v]) continue;
       std::int32_t& hint = vert_hint[v];
       if (hint == kNone) hint = face_hint[static_cast<std::size_t>(face_of(out[v]))];
-      x[v] = ref->project(x[v], hint);
+      x[v] = walk_closest(*ref, x[v], hint);
     }
     for (std::size_t g = 0; g < f.size(); ++g) {
       if (face_dead[g]) continue;
@@ -598,20 +526,7 @@ bool remesh_isotropic_fast(TriangleMesh& mesh, std::vector<std::array<std::uint3
                            std::vector<char>& fixed, double edge, int iterations) {
   Remesher r;
   if (!r.build(mesh, constrained, fixed)) return false;
-  Reference ref;
-  ref.x = mesh.positions;
-  ref.t = mesh.triangles;
-  ref.patch = r.face_patch;
-  ref.start.assign(ref.x.size() + 1, 0);
-  for (const Triangle& t : ref.t)
-    for (std::uint32_t v : t) ++ref.start[v + 1];
-  for (std::size_t v = 0; v < ref.x.size(); ++v) ref.start[v + 1] += ref.start[v];
-  ref.tris.resize(ref.start.back());
-  {
-    std::vector<std::uint32_t> fill(ref.start.begin(), ref.start.end() - 1);
-    for (std::size_t k = 0; k < ref.t.size(); ++k)
-      for (std::uint32_t v : ref.t[k]) ref.tris[fill[v]++] = static_cast<std::uint32_t>(k);
-  }
+  const SurfaceWalk ref = make_surface_walk(mesh, r.face_patch);
   r.ref = &ref;
   const double low = 4.0 / 5.0 * edge, high = 4.0 / 3.0 * edge;
   for (int it = 0; it < iterations; ++it) {

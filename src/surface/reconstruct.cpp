@@ -31,6 +31,7 @@
 #include "contour4d/surface/resample.h"
 #include "contour4d/surface/smoothing.h"
 #include "contour4d/surface/surface_projector.h"
+#include "contour4d/surface/surface_walk.h"
 #include "contour4d/surface/tiling.h"
 
 namespace c4d {
@@ -880,9 +881,14 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   // The few thin triangles left (next to contour vertices, at branchings): their free vertices move
   // within the surface to maximise their ring's smallest angle.
   if (manifold && opt.angle_repair.passes > 0) {
-    const SurfaceProjector surface(mesh);
+    // Trial positions a fraction of an edge from their vertex: snapped by a walk over the surface
+    // from one of the vertex's triangles (no tree to build).
+    const SurfaceWalk surface = make_surface_walk(mesh);
     std::vector<std::int32_t> hints(mesh.positions.size(), -1);
-    auto snap_to = [&](std::uint32_t v, Vec3 c) { return surface.closest(c, nullptr, &hints[v]); };
+    auto snap_to = [&](std::uint32_t v, Vec3 c) {
+      if (hints[v] < 0) hints[v] = walk_start(surface, v);
+      return hints[v] < 0 ? c : walk_closest(surface, c, hints[v]);
+    };
     repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
     // Slivers whose three vertices are all on contours (a small cap) cannot move: flip their edge
     // where that raises the pair's smallest angle, and repair around the new edges.

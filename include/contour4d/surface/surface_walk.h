@@ -1,0 +1,40 @@
+#pragma once
+//! \file surface_walk.h
+//! \brief Closest points on a triangle mesh by walking over it: from a starting triangle, greedy
+//! descent to the triangle sharing a vertex with the current one whose closest point is nearer, until
+//! none is. No tree to build; for queries a fraction of an edge from a known place on the surface (a
+//! vertex moved by the remeshing's relaxation or by the small-angle repair's pattern search), where the
+//! walk takes one to three steps. It finds a local minimum of the distance: a query far from its start,
+//! across a narrow gap from another sheet, may stop on the wrong sheet (use surface_projector.h there).
+
+#include <cstdint>
+#include <vector>
+
+#include "contour4d/core/mesh.h"
+
+namespace c4d {
+
+//! The walked surface: its positions and triangles, the patch of each triangle (the walk never
+//! leaves the patch it starts in; all 0 for one patch) and, per vertex, its triangles (CSR).
+struct SurfaceWalk {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  std::vector<std::int32_t> patch;          //!< per triangle
+  std::vector<std::uint32_t> start, tris;   //!< triangles of vertex v: tris[start[v] .. start[v + 1])
+};
+
+//! The walk over `surface` (copied); `patch` has one entry per triangle, or is empty (one patch).
+SurfaceWalk make_surface_walk(const TriangleMesh& surface, std::vector<std::int32_t> patch = {});
+
+//! The closest point to p found by walking from triangle `hint` (a valid triangle index), which is
+//! updated to the triangle of the answer: pass it again for the next nearby query.
+Vec3 walk_closest(const SurfaceWalk& walk, const Vec3& p, std::int32_t& hint);
+
+//! A triangle of vertex v (its first in the CSR), or −1 when v has none: a start for walk_closest.
+std::int32_t walk_start(const SurfaceWalk& walk, std::uint32_t v);
+
+//! Closest point to p on triangle (a, b, c) (Ericson, "Real-Time Collision Detection", 5.1.5); on a
+//! degenerate triangle, the closest point of its edges.
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace c4d

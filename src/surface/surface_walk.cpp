@@ -1,0 +1,98 @@
+// Closest points by walking over the surface: the projection of Botsch & Kobbelt's isotropic
+// remeshing ("A remeshing approach to multiresolution modeling", 2004: "project each vertex back onto
+// the original surface"), the refinement step of Lim et al. 2014, "Surface Smoothing and Refinement",
+// done from each vertex's last closest triangle instead of a tree query; the one-frame surface's
+// small-angle repair snaps its trial positions the same way.
+#include "contour4d/surface/surface_walk.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace c4d {
+
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double sum = va + vb + vc;
+  if (!(sum > 0)) {  // degenerate triangle: the closest of its edges
+    auto on_segment = [&](const Vec3& s, const Vec3& e) {
+      const Vec3 se = e - s;
+      const double l = dot(se, se);
+      const double w = l > 0 ? std::clamp(dot(p - s, se) / l, 0.0, 1.0) : 0.0;
+      return s + w * se;
+    };
+    Vec3 best = on_segment(a, b);
+    for (const Vec3& q : {on_segment(b, c), on_segment(c, a)})
+      if (dot(p - q, p - q) < dot(p - best, p - best)) best = q;
+    return best;
+  }
+  const double denom = 1.0 / sum;
+  return a + (vb * denom) * ab + (vc * denom) * ac;
+}
+
+SurfaceWalk make_surface_walk(const TriangleMesh& surface, std::vector<std::int32_t> patch) {
+  SurfaceWalk w;
+  w.positions = surface.positions;
+  w.triangles = surface.triangles;
+  w.patch = std::move(patch);
+  w.patch.resize(w.triangles.size(), 0);
+  w.start.assign(w.positions.size() + 1, 0);
+  for (const Triangle& t : w.triangles)
+    for (std::uint32_t v : t) ++w.start[v + 1];
+  for (std::size_t v = 0; v < w.positions.size(); ++v) w.start[v + 1] += w.start[v];
+  w.tris.resize(w.start.back());
+  std::vector<std::uint32_t> fill(w.start.begin(), w.start.end() - 1);
+  for (std::size_t k = 0; k < w.triangles.size(); ++k)
+    for (std::uint32_t v : w.triangles[k]) w.tris[fill[v]++] = static_cast<std::uint32_t>(k);
+  return w;
+}
+
+std::int32_t walk_start(const SurfaceWalk& walk, std::uint32_t v) {
+  if (v + 1 >= walk.start.size() || walk.start[v] == walk.start[v + 1]) return -1;
+  return static_cast<std::int32_t>(walk.tris[walk.start[v]]);
+}
+
+Vec3 walk_closest(const SurfaceWalk& walk, const Vec3& p, std::int32_t& hint) {
+  auto dist2 = [&](std::int32_t k, Vec3* q) {
+    const Triangle& tr = walk.triangles[static_cast<std::size_t>(k)];
+    *q = closest_on_triangle(p, walk.positions[tr[0]], walk.positions[tr[1]], walk.positions[tr[2]]);
+    const Vec3 d = p - *q;
+    return dot(d, d);
+  };
+  Vec3 best_q;
+  double best = dist2(hint, &best_q);
+  const std::int32_t pid = walk.patch[static_cast<std::size_t>(hint)];
+  for (int step = 0; step < 256; ++step) {
+    std::int32_t next = hint;
+    for (std::uint32_t v : walk.triangles[static_cast<std::size_t>(hint)])
+      for (std::uint32_t k = walk.start[v]; k < walk.start[v + 1]; ++k) {
+        const auto cand = static_cast<std::int32_t>(walk.tris[k]);
+        if (cand == hint || walk.patch[static_cast<std::size_t>(cand)] != pid) continue;
+        Vec3 q;
+        const double d = dist2(cand, &q);
+        if (d < best) {
+          best = d;
+          best_q = q;
+          next = cand;
+        }
+      }
+    if (next == hint) break;
+    hint = next;
+  }
+  return best_q;
+}
+
+}  // namespace c4d
