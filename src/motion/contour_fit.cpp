@@ -69,10 +69,12 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
     {
       const SurfaceProjector proj(TriangleMesh{x, triangles});
       if (proj.empty()) return rep;
+      // The first round searches the tree; later rounds walk from the triangle each sample landed on
+      // (the mesh moved only near the far samples).
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ns), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s) {
-          std::int32_t hint = -1;
-          closest[s] = proj.closest(samples[s], nullptr, &hint);
+          std::int32_t hint = it == 0 ? -1 : proj.hint_of(tri_of[s]);
+          closest[s] = proj.walk(samples[s], nullptr, &hint);
           tri_of[s] = proj.mesh_triangle(hint);
         }
       });

@@ -643,7 +643,7 @@ struct Projector {
     const bool ordered = order != nullptr && order->size() == x.size();
     tbb::parallel_for(std::size_t(0), x.size(), [&](std::size_t k) {
       const std::size_t i = ordered ? (*order)[k] : k;
-      p[i] = surface.closest(x[i], normals ? &(*normals)[i] : nullptr, &hints[i]);
+      p[i] = surface.walk(x[i], normals ? &(*normals)[i] : nullptr, &hints[i]);
     });
     return p;
   }
@@ -1349,7 +1349,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
         //    move within the frame's surface (along their contour when on one) to maximise their ring's
         //    smallest angle.
         auto snap_to = [&](std::uint32_t v, Vec3 c) {
-          return on_contour[v] ? slide(v, c) : surface.closest(c, nullptr, &proj.hints[v]);
+          return on_contour[v] ? slide(v, c) : surface.walk(c, nullptr, &proj.hints[v]);
         };
         if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, fixed, snap_to, opt.untangle_rounds);
         if (opt.angle_repair.passes > 0)

@@ -7,8 +7,11 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <algorithm>
 #include <limits>
 #include <vector>
+
+#include "contour4d/surface/surface_walk.h"
 
 namespace c4d {
 namespace {
@@ -18,16 +21,24 @@ using Primitive = CGAL::AABB_triangle_primitive<K, Iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 }  // namespace
 
+// Walks that end farther from their query than this fraction of their triangle's longest edge are
+// checked by the tree (SurfaceProjector::walk).
+constexpr double kWalkTrust = 0.05;
+
 struct SurfaceProjector::Impl {
   std::vector<K::Triangle_3> triangles;
   std::vector<Vec3> normals;
   std::vector<std::uint32_t> source;  // index of each kept triangle in the mesh
-  Tree tree;
+  std::vector<std::int32_t> kept;     // per mesh triangle: its index among the kept ones, or -1
+  SurfaceWalk walk;                   // over the kept triangles, in their order
+  Tree tree;                          // built at the first query (CGAL builds it, and its k-d tree, lazily)
 };
 
 SurfaceProjector::SurfaceProjector(const TriangleMesh& s) : impl_(std::make_unique<Impl>()) {
   const std::size_t n = s.positions.size();
   impl_->triangles.reserve(s.triangles.size());
+  impl_->kept.assign(s.triangles.size(), -1);
+  TriangleMesh kept{s.positions, {}};
   for (const Triangle& t : s.triangles) {
     if (t[0] >= n || t[1] >= n || t[2] >= n) continue;
     const Vec3 a = s.positions[t[0]], b = s.positions[t[1]], c = s.positions[t[2]];
@@ -37,11 +48,13 @@ SurfaceProjector::SurfaceProjector(const TriangleMesh& s) : impl_(std::make_uniq
     if (!(norm(cross(b - a, c - a)) > 0.0)) continue;
     impl_->triangles.emplace_back(K::Point_3(a.x, a.y, a.z), K::Point_3(b.x, b.y, b.z), K::Point_3(c.x, c.y, c.z));
     impl_->normals.push_back(normalized(cross(b - a, c - a)));
+    impl_->kept[static_cast<std::size_t>(&t - s.triangles.data())] = static_cast<std::int32_t>(impl_->source.size());
     impl_->source.push_back(static_cast<std::uint32_t>(&t - s.triangles.data()));
+    kept.triangles.push_back(t);
   }
   if (impl_->triangles.empty()) return;
+  impl_->walk = make_surface_walk(kept);
   impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
-  impl_->tree.accelerate_distance_queries();
 }
 
 SurfaceProjector::~SurfaceProjector() = default;
@@ -51,6 +64,25 @@ bool SurfaceProjector::empty() const { return impl_->triangles.empty(); }
 std::int32_t SurfaceProjector::mesh_triangle(std::int32_t hint) const {
   if (hint < 0 || static_cast<std::size_t>(hint) >= impl_->source.size()) return -1;
   return static_cast<std::int32_t>(impl_->source[static_cast<std::size_t>(hint)]);
+}
+
+std::int32_t SurfaceProjector::hint_of(std::int32_t triangle) const {
+  if (triangle < 0 || static_cast<std::size_t>(triangle) >= impl_->kept.size()) return -1;
+  return impl_->kept[static_cast<std::size_t>(triangle)];
+}
+
+Vec3 SurfaceProjector::walk(Vec3 p, Vec3* normal, std::int32_t* hint) const {
+  if (empty() || *hint < 0 || static_cast<std::size_t>(*hint) >= impl_->triangles.size()) return closest(p, normal, hint);
+  const Vec3 q = walk_closest(impl_->walk, p, *hint);
+  // A walk can stop in a local minimum of the distance: seen only where it ended farther than a tenth
+  // of an edge from the query (biv-me's 25 frames: 92 of 23.8 M walks, all 0.19–0.39 mm away, edges
+  // about 2 mm). Those answers are checked by the tree, searched within the walk's distance.
+  const Triangle& t = impl_->walk.triangles[static_cast<std::size_t>(*hint)];
+  const Vec3 &a = impl_->walk.positions[t[0]], &b = impl_->walk.positions[t[1]], &c = impl_->walk.positions[t[2]];
+  const double longest2 = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
+  if (dot(p - q, p - q) > kWalkTrust * kWalkTrust * longest2) return closest(p, normal, hint);
+  if (normal) *normal = impl_->normals[static_cast<std::size_t>(*hint)];
+  return q;
 }
 
 Vec3 SurfaceProjector::closest(Vec3 p, Vec3* normal) const {

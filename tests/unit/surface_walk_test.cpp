@@ -9,6 +9,8 @@
 #include <numbers>
 #include <random>
 
+#include "contour4d/surface/surface_projector.h"
+
 namespace {
 
 using c4d::Triangle;
@@ -99,6 +101,66 @@ TEST(SurfaceWalk, StaysInItsPatch) {
   EXPECT_NEAR(r.z, 0.0, 1e-12);
   EXPECT_EQ(c4d::walk_start(w, 3), 1);
   EXPECT_EQ(c4d::walk_start(w, 2), 2);
+}
+
+// SurfaceProjector::walk answers as the tree does for queries near the last answer, carries hints
+// over to a projector of the moved mesh, and falls back to the tree where a walk ends far from its
+// query on the wrong sheet.
+TEST(SurfaceWalk, ProjectorWalksAgreeWithTheTree) {
+  TriangleMesh m = torus(10.0, 3.0, 64, 24);
+  const c4d::SurfaceProjector proj(m);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> off(-0.3, 0.3);
+  std::uniform_int_distribution<std::uint32_t> pick(0, static_cast<std::uint32_t>(m.positions.size() - 1));
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 p = m.positions[pick(rng)] + Vec3{off(rng), off(rng), off(rng)};
+    std::int32_t tree_hint = -1;
+    const Vec3 a = proj.closest(p, nullptr, &tree_hint);
+    std::int32_t walk_hint = -1;  // no hint: the tree
+    const Vec3 b = proj.walk(p, nullptr, &walk_hint);
+    EXPECT_EQ(c4d::distance(a, b), 0.0);
+    const Vec3 q = p + Vec3{off(rng), off(rng), off(rng)};  // a nearby query, walked from there
+    Vec3 normal{};
+    const Vec3 c = proj.walk(q, &normal, &walk_hint);
+    EXPECT_NEAR(c4d::distance(q, c), scan_distance(m, q), 1e-12) << "query " << k;
+    EXPECT_NEAR(c4d::norm(normal), 1.0, 1e-12);
+  }
+  // Hints carry over to the same triangles at moved positions.
+  for (Vec3& x : m.positions) x = x + Vec3{0.01, 0.02, 0.0};
+  const c4d::SurfaceProjector moved(m);
+  EXPECT_EQ(moved.hint_of(5), 5);
+  EXPECT_EQ(moved.mesh_triangle(moved.hint_of(17)), 17);
+}
+
+TEST(SurfaceWalk, ProjectorFallsBackToTheTreeFarFromTheWalk) {
+  // Two parallel sheets 0.3 apart (separate components, edges 1 mm), and a zero-area triangle that
+  // the projector leaves out.
+  TriangleMesh m;
+  for (double z : {0.0, 0.3})
+    for (int i = 0; i <= 4; ++i)
+      for (int j = 0; j <= 4; ++j) m.positions.push_back({double(i), double(j), z});
+  for (std::uint32_t base : {0u, 25u})
+    for (std::uint32_t i = 0; i < 4; ++i)
+      for (std::uint32_t j = 0; j < 4; ++j) {
+        const std::uint32_t a = base + 5 * i + j;
+        m.triangles.push_back({a, a + 5, a + 6});
+        m.triangles.push_back({a, a + 6, a + 1});
+      }
+  m.triangles.push_back({0, 1, 2});  // zero area
+  const c4d::SurfaceProjector proj(m);
+  EXPECT_EQ(proj.hint_of(64), -1);
+  EXPECT_EQ(proj.hint_of(63), 63);
+  // Near the lower sheet, walked from a lower triangle: trusted, the lower sheet.
+  std::int32_t hint = 12;
+  Vec3 q = proj.walk({2.2, 2.3, 0.04}, nullptr, &hint);
+  EXPECT_NEAR(q.z, 0.0, 1e-12);
+  EXPECT_LT(hint, 32);
+  // Nearer the upper sheet, walked from the same lower triangle: the walk cannot leave the lower sheet
+  // and ends 0.25 mm away; the tree finds the upper one.
+  hint = 12;
+  q = proj.walk({2.2, 2.3, 0.25}, nullptr, &hint);
+  EXPECT_NEAR(q.z, 0.3, 1e-12);
+  EXPECT_GE(hint, 32);
 }
 
 }  // namespace
