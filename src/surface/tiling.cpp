@@ -32,35 +32,40 @@ BandPath band_path_from(const std::vector<std::uint32_t>& lower, const std::vect
   out.j0 = j0;
   const std::size_t n = lower.size(), m = upper.size();
   const bool grouped = lower_group.size() == n && upper_group.size() == m;
-  auto L = [&](std::size_t i) { return positions[lower[(i0 + i) % n]]; };
-  auto U = [&](std::size_t j) { return positions[upper[(j0 + j) % m]]; };
-  auto allowed = [&](std::size_t i, std::size_t j) {
-    if (!grouped) return true;
-    const int a = lower_group[(i0 + i) % n], b = upper_group[(j0 + j) % m];
-    return a < 0 || b < 0 || a == b;
-  };
+  // The chains' points in path order (index n is index 0 again, as m is), and their groups.
+  std::vector<Vec3> L(n + 1), U(m + 1);
+  std::vector<int> lg(n + 1, -1), ug(m + 1, -1);
+  for (std::size_t i = 0; i <= n; ++i) {
+    L[i] = positions[lower[(i0 + i) % n]];
+    if (grouped) lg[i] = lower_group[(i0 + i) % n];
+  }
+  for (std::size_t j = 0; j <= m; ++j) {
+    U[j] = positions[upper[(j0 + j) % m]];
+    if (grouped) ug[j] = upper_group[(j0 + j) % m];
+  }
+  auto allowed = [&](std::size_t i, std::size_t j) { return lg[i] < 0 || ug[j] < 0 || lg[i] == ug[j]; };
   const std::size_t W = m + 1;
-  std::vector<double> cost((n + 1) * W, std::numeric_limits<double>::infinity());
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> cost((n + 1) * W, inf);
   std::vector<char> from((n + 1) * W, 0);  // 1: came by advancing lower, 2: by advancing upper
   if (!allowed(0, 0)) return out;
   cost[0] = 0.0;
+  // Both ways into state (i, j) add the spanning edge (L(i), U(j)): it is measured once per state.
+  // The lower step is tried first and the upper one taken only when strictly cheaper.
   for (std::size_t i = 0; i <= n; ++i)
     for (std::size_t j = 0; j <= m; ++j) {
-      const double c = cost[i * W + j];
-      if (!(c < std::numeric_limits<double>::infinity())) continue;
-      if (i < n && allowed(i + 1, j)) {
-        const double nc = c + distance(L(i + 1), U(j));
-        if (nc < cost[(i + 1) * W + j]) {
-          cost[(i + 1) * W + j] = nc;
-          from[(i + 1) * W + j] = 1;
-        }
+      if ((i == 0 && j == 0) || !allowed(i, j)) continue;
+      const double by_lower = i > 0 ? cost[(i - 1) * W + j] : inf, by_upper = j > 0 ? cost[i * W + j - 1] : inf;
+      if (!(by_lower < inf) && !(by_upper < inf)) continue;
+      const double d = distance(L[i], U[j]);
+      double& c = cost[i * W + j];
+      if (by_lower < inf) {
+        c = by_lower + d;
+        from[i * W + j] = 1;
       }
-      if (j < m && allowed(i, j + 1)) {
-        const double nc = c + distance(L(i), U(j + 1));
-        if (nc < cost[i * W + j + 1]) {
-          cost[i * W + j + 1] = nc;
-          from[i * W + j + 1] = 2;
-        }
+      if (by_upper < inf && by_upper + d < c) {
+        c = by_upper + d;
+        from[i * W + j] = 2;
       }
     }
   out.cost = cost[n * W + m];
