@@ -77,10 +77,17 @@ Vec3 walk_closest(const SurfaceWalk& walk, const Vec3& p, std::int32_t& hint) {
   const std::int32_t pid = walk.patch[static_cast<std::size_t>(hint)];
   for (int step = 0; step < 256; ++step) {
     std::int32_t next = hint;
-    for (std::uint32_t v : walk.triangles[static_cast<std::size_t>(hint)])
-      for (std::uint32_t k = walk.start[v]; k < walk.start[v + 1]; ++k) {
+    const Triangle here = walk.triangles[static_cast<std::size_t>(hint)];
+    for (int i = 0; i < 3; ++i)
+      for (std::uint32_t k = walk.start[here[i]]; k < walk.start[here[i] + 1]; ++k) {
         const auto cand = static_cast<std::int32_t>(walk.tris[k]);
         if (cand == hint || walk.patch[static_cast<std::size_t>(cand)] != pid) continue;
+        // A triangle across an edge is also around an earlier corner: measured there already (a
+        // second measure is never strictly nearer, so skipping it changes nothing).
+        const Triangle& ct = walk.triangles[static_cast<std::size_t>(cand)];
+        bool seen = false;
+        for (int e = 0; e < i; ++e) seen = seen || ct[0] == here[e] || ct[1] == here[e] || ct[2] == here[e];
+        if (seen) continue;
         Vec3 q;
         const double d = dist2(cand, &q);
         if (d < best) {
