@@ -21,34 +21,42 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
                      const FairingOptions& options) {
   const std::size_t nv = mesh.positions.size();
   if (nv == 0) return true;
-  // One-ring neighbours (sorted, unique) and boundary flags (edges used by one triangle).
-  std::vector<std::vector<std::uint32_t>> ring(nv);
-  std::vector<std::array<std::uint32_t, 2>> edges;
-  edges.reserve(3 * mesh.triangles.size());
+  // One-ring neighbours (sorted, unique; CSR) and boundary flags: each triangle lists its two other
+  // corners at each corner, so a neighbour listed once shares an edge used by one triangle.
+  std::vector<std::uint32_t> start(nv + 1, 0);
   for (const Triangle& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-      ring[a].push_back(b);
-      ring[b].push_back(a);
-      edges.push_back({std::min(a, b), std::max(a, b)});
-    }
-  std::sort(edges.begin(), edges.end());
+    for (std::uint32_t v : t) start[v + 1] += 2;
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> listed(start.back());
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (const Triangle& t : mesh.triangles)
+      for (int k = 0; k < 3; ++k) {
+        listed[fill[t[k]]++] = t[(k + 1) % 3];
+        listed[fill[t[k]]++] = t[(k + 2) % 3];
+      }
+  }
   std::vector<char> boundary(nv, 0);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) boundary[edges[i][0]] = boundary[edges[i][1]] = 1;
-    i = j;
+  std::vector<std::uint32_t> ring_start(nv + 1, 0), ring_list;
+  ring_list.reserve(listed.size() / 2 + nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto first = listed.begin() + start[v], last = listed.begin() + start[v + 1];
+    std::sort(first, last);
+    for (auto it = first; it != last;) {
+      auto same = it;
+      while (same != last && *same == *it) ++same;
+      if (same - it == 1) boundary[v] = boundary[*it] = 1;
+      ring_list.push_back(*it);
+      it = same;
+    }
+    ring_start[v + 1] = static_cast<std::uint32_t>(ring_list.size());
   }
-  for (auto& r : ring) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-  }
+  auto ring_size = [&](std::size_t v) { return ring_start[v + 1] - ring_start[v]; };
   // Unknown index of each free vertex.
   std::vector<int> unknown(nv, -1);
   int nf = 0;
   for (std::size_t v = 0; v < nv; ++v)
-    if ((fixed.empty() || !fixed[v]) && !ring[v].empty()) unknown[v] = nf++;
+    if ((fixed.empty() || !fixed[v]) && ring_size(v) > 0) unknown[v] = nf++;
   if (nf == 0) return true;
 
   // Rows of the energy: for each used, non-boundary vertex v, sqrt(w_v) (L(x)_v − b_v), split into
@@ -60,10 +68,10 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
   constant.reserve(nv);
   int rows = 0;
   for (std::size_t v = 0; v < nv; ++v) {
-    if (ring[v].empty() || boundary[v]) continue;
+    if (ring_size(v) == 0 || boundary[v]) continue;
     const bool shape = !keep_shape.empty() && keep_shape[v];
     const double w = shape ? std::sqrt(std::max(0.0, options.shape_weight)) : 1.0;
-    const double inv = 1.0 / static_cast<double>(ring[v].size());
+    const double inv = 1.0 / static_cast<double>(ring_size(v));
     std::array<double, 3> c{0, 0, 0};
     bool touches = false;
     auto add = [&](std::uint32_t u, double coef) {
@@ -78,7 +86,7 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
       }
     };
     const std::size_t mark = trip.size();
-    for (std::uint32_t u : ring[v]) add(u, inv);
+    for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) add(ring_list[k], inv);
     add(static_cast<std::uint32_t>(v), -1.0);
     if (!touches) {
       trip.resize(mark);
@@ -87,7 +95,7 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
     if (shape) {
       // b_v: the Laplacian of the input positions.
       Vec3 lap = -1.0 * mesh.positions[v];
-      for (std::uint32_t u : ring[v]) lap += inv * mesh.positions[u];
+      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) lap += inv * mesh.positions[ring_list[k]];
       c[0] -= w * lap.x;
       c[1] -= w * lap.y;
       c[2] -= w * lap.z;
