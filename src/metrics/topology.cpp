@@ -11,6 +11,8 @@
 #include "contour4d/metrics/topology.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -76,6 +78,88 @@ bool triangles_intersect(const std::vector<Vec3>& positions, const Triangle& s, 
 
 namespace {
 
+// Vertices whose triangles cannot cut each other: they form one closed, consistently oriented fan
+// whose projection along a coordinate axis (the fan's main normal direction) turns the same way in
+// every triangle and winds once around the vertex. The projected triangles then share only edges
+// and the vertex, and since none projects flat, two of them meet in space only there: no pair
+// through this vertex (or through an edge of it) needs a test. The projection drops a coordinate,
+// so the orientations (exact predicates) and the winding (coordinate comparisons) are exact.
+std::vector<char> untangled_fans(const TriangleMesh& mesh) {
+  const std::size_t nv = mesh.positions.size();
+  std::vector<char> ok(nv, 0);
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  for (const Triangle& t : mesh.triangles)
+    if (valid_triangle(t, nv))
+      for (std::uint32_t v : t) ++start[v + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  // Per vertex, the directed edges opposite it (a -> b for its triangle (v, a, b)).
+  std::vector<std::array<std::uint32_t, 2>> opposite(start.back());
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (const Triangle& t : mesh.triangles)
+      if (valid_triangle(t, nv))
+        for (int k = 0; k < 3; ++k) opposite[fill[t[k]]++] = {t[(k + 1) % 3], t[(k + 2) % 3]};
+  }
+  std::vector<std::uint32_t> ring;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::uint32_t b = start[v], e = start[v + 1];
+    const std::size_t k = e - b;
+    if (k < 3 || !is_finite(mesh.positions[v])) continue;
+    // The fan's cycle: from the first edge, each next edge starts where the last one ended.
+    ring.assign(1, opposite[b][0]);
+    std::uint32_t at = opposite[b][1];
+    bool closed = true;
+    for (std::size_t step = 1; step < k && closed; ++step) {
+      ring.push_back(at);
+      std::size_t found = 0, next = 0;
+      for (std::uint32_t r = b; r < e; ++r)
+        if (opposite[r][0] == at) {
+          ++found;
+          next = r;
+        }
+      closed = found == 1;
+      if (closed) at = opposite[next][1];
+    }
+    if (!closed || at != ring[0]) continue;
+    std::vector<std::uint32_t> sorted = ring;  // each neighbour once
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+    const Vec3 pv = mesh.positions[v];
+    Vec3 normal{};
+    bool finite = true;
+    for (std::size_t i = 0; i < k; ++i) {
+      const Vec3 pa = mesh.positions[ring[i]], pb = mesh.positions[ring[(i + 1) % k]];
+      finite = finite && is_finite(pa);
+      normal += cross(pa - pv, pb - pv);
+    }
+    if (!finite) continue;
+    // The axis dropped, and the other two coordinates in the order that makes the fan turn positively.
+    const double n[3] = {normal.x, normal.y, normal.z};
+    int axis = 0;
+    for (int c = 1; c < 3; ++c)
+      if (std::abs(n[c]) > std::abs(n[axis])) axis = c;
+    if (!(n[axis] != 0)) continue;
+    int cu = (axis + 1) % 3, cw = (axis + 2) % 3;
+    if (n[axis] < 0) std::swap(cu, cw);
+    auto plane = [&](const Vec3& p) {
+      const double q[3] = {p.x, p.y, p.z};
+      return Kernel::Point_2(q[cu], q[cw]);
+    };
+    const Kernel::Point_2 o = plane(pv);
+    // Upper half-turn: angles in [0, pi) around o.
+    auto upper = [&](const Kernel::Point_2& a) { return a.y() > o.y() || (a.y() == o.y() && a.x() > o.x()); };
+    bool good = true;
+    int turns = 0;
+    for (std::size_t i = 0; i < k && good; ++i) {
+      const Kernel::Point_2 a = plane(mesh.positions[ring[i]]), c = plane(mesh.positions[ring[(i + 1) % k]]);
+      good = CGAL::orientation(o, a, c) == CGAL::LEFT_TURN;
+      if (!upper(a) && upper(c)) ++turns;
+    }
+    ok[v] = good && turns == 1;
+  }
+  return ok;
+}
+
 // count_self_intersections and its restriction to flagged triangles (`only` null: all pairs).
 std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector<char>* only,
                                      std::vector<std::pair<std::size_t, std::size_t>>* pairs, std::size_t max_pairs_listed) {
@@ -100,11 +184,15 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
   }
   std::size_t count = 0;
   std::set<std::pair<std::size_t, std::size_t>> first;  // the smallest pairs: same list whatever the visiting order
+  const std::vector<char> untangled = untangled_fans(mesh);
   auto callback = [&](const Box* x, const Box* y) {
     const std::size_t i = std::min(x->info(), y->info()), j = std::max(x->info(), y->info());
     if (i == j) return;
     // A pair of two flagged triangles is met twice in the two-set search: counted from its smaller one.
     if (only != nullptr && flagged(y->info()) && x->info() > y->info()) return;
+    const Triangle &s = mesh.triangles[i], &t = mesh.triangles[j];
+    for (std::uint32_t v : s)
+      if (untangled[v] && (v == t[0] || v == t[1] || v == t[2])) return;
     if (!triangles_intersect(mesh.positions, mesh.triangles[i], mesh.triangles[j])) return;
     ++count;
     if (pairs != nullptr && max_pairs_listed > 0) {
@@ -113,7 +201,7 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
     }
   };
   if (only == nullptr)
-    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), callback);
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), callback, std::ptrdiff_t(2000));
   else if (!some.empty())
     CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), callback);
   if (pairs != nullptr) pairs->assign(first.begin(), first.end());

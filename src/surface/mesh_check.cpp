@@ -13,6 +13,7 @@
 #include <numeric>
 
 #include "../core/union_find_internal.h"
+#include "contour4d/metrics/topology.h"
 
 namespace c4d {
 namespace {
@@ -128,7 +129,11 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
   const long used_vertices = static_cast<long>(std::count(used.begin(), used.end(), 1));
   c.euler = used_vertices - static_cast<long>(edges) + static_cast<long>(nt);
   c.signed_volume = signed_volume(mesh);
-  if (self_intersections && nt > 0) c.self_intersects = soup_self_intersects(mesh);
+  // A clean closed surface (the usual case) by the soup test, whose vertex fans spare most pairs
+  // (metrics/topology.h: the same rule as CGAL's); anything else by CGAL's test on a Surface_mesh.
+  const bool clean = c.boundary_edges == 0 && c.nonmanifold_edges == 0 && c.nonmanifold_vertices == 0 &&
+                     c.misoriented_edges == 0 && c.degenerate_triangles == 0;
+  if (self_intersections && nt > 0) c.self_intersects = clean ? count_self_intersections(mesh) > 0 : soup_self_intersects(mesh);
   return c;
 }
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,7 @@
 #include "contour4d/metrics/quality.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/metrics/volume.h"
+#include "contour4d/surface/mesh_check.h"
 #include "metrics_fixtures.h"
 
 namespace c4d {
@@ -135,6 +137,49 @@ TEST(Topology, SelfIntersectionsCountCrossingSpheresOnly) {
   EXPECT_EQ(count_self_intersections_of(crossing, second), tc.self_intersections);
   EXPECT_EQ(count_self_intersections_of(crossing, none), 0u);
   EXPECT_EQ(count_self_intersections_of(apart, std::vector<char>(apart.triangles.size(), 1)), 0u);
+}
+
+// Pairs through a vertex whose fan projects flat without folding are never tested (untangled_fans in
+// topology.cpp); folded fans must still be found. Vertices pushed along the surface by up to three
+// edges fold their fans over their neighbours': the count and the pairs equal CGAL's
+// self_intersections on the same surface, under a rigid motion too.
+TEST(Topology, SelfIntersectionsOfFoldedFansAgreeWithCgal) {
+  const TriangleMesh sphere = test::icosphere(10.0, 3);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<std::size_t> pick(0, sphere.positions.size() - 1);
+  std::uniform_real_distribution<double> step(-4.5, 4.5);
+  for (int trial = 0; trial < 6; ++trial) {
+    TriangleMesh m = sphere;
+    for (int k = 0; k < 3 * trial; ++k) {
+      Vec3& p = m.positions[pick(rng)];
+      p = 10.0 * normalized(p + Vec3{step(rng), step(rng), step(rng)});  // along the sphere
+    }
+    if (trial == 5) m.positions[7] = 0.1 * m.positions[7];  // a vertex pulled through to the middle
+    std::vector<std::pair<std::size_t, std::size_t>> ours;
+    const std::size_t n = count_self_intersections(m, &ours, m.triangles.size());
+    const auto cgal = self_intersecting_pairs(m);
+    ASSERT_EQ(n, cgal.size()) << "trial " << trial;
+    for (std::size_t k = 0; k < n; ++k) {
+      EXPECT_EQ(ours[k].first, cgal[k][0]);
+      EXPECT_EQ(ours[k].second, cgal[k][1]);
+    }
+    EXPECT_EQ(count_self_intersections(rigid_motion(m)), n) << "trial " << trial;
+    if (trial > 0) {
+      EXPECT_GT(n, 0u) << "trial " << trial;
+    }
+  }
+  // A flat fan that turns the same way in every triangle but winds twice round its vertex: its
+  // triangles overlap although none is flipped.
+  TriangleMesh twice;
+  twice.positions.push_back({0, 0, 0});
+  for (int k = 0; k < 7; ++k) {
+    const double a = 4.0 * std::numbers::pi * k / 7.0;
+    twice.positions.push_back({std::cos(a), std::sin(a), 0.0});
+  }
+  for (std::uint32_t k = 0; k < 7; ++k) twice.triangles.push_back({0, 1 + k, 1 + (k + 1) % 7});
+  const std::size_t n = count_self_intersections(twice);
+  EXPECT_EQ(n, self_intersecting_pairs(twice).size());
+  EXPECT_GT(n, 0u);
 }
 
 TEST(Topology, IntersectsAnyAgreesWithTheCountOfEachTriangle) {
