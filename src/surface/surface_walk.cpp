@@ -6,6 +6,7 @@
 #include "contour4d/surface/surface_walk.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace c4d {
@@ -57,6 +58,13 @@ SurfaceWalk make_surface_walk(const TriangleMesh& surface, std::vector<std::int3
   std::vector<std::uint32_t> fill(w.start.begin(), w.start.end() - 1);
   for (std::size_t k = 0; k < w.triangles.size(); ++k)
     for (std::uint32_t v : w.triangles[k]) w.tris[fill[v]++] = static_cast<std::uint32_t>(k);
+  w.balls.resize(w.triangles.size());
+  for (std::size_t k = 0; k < w.triangles.size(); ++k) {
+    const Triangle& t = w.triangles[k];
+    const Vec3 c = (w.positions[t[0]] + w.positions[t[1]] + w.positions[t[2]]) / 3.0;
+    const double r = std::max({distance(c, w.positions[t[0]]), distance(c, w.positions[t[1]]), distance(c, w.positions[t[2]])});
+    w.balls[k] = {c.x, c.y, c.z, r};
+  }
   return w;
 }
 
@@ -74,6 +82,7 @@ Vec3 walk_closest(const SurfaceWalk& walk, const Vec3& p, std::int32_t& hint) {
   };
   Vec3 best_q;
   double best = dist2(hint, &best_q);
+  double reach = std::sqrt(best);
   const std::int32_t pid = walk.patch[static_cast<std::size_t>(hint)];
   for (int step = 0; step < 256; ++step) {
     std::int32_t next = hint;
@@ -88,10 +97,16 @@ Vec3 walk_closest(const SurfaceWalk& walk, const Vec3& p, std::int32_t& hint) {
         bool seen = false;
         for (int e = 0; e < i; ++e) seen = seen || ct[0] == here[e] || ct[1] == here[e] || ct[2] == here[e];
         if (seen) continue;
+        // A triangle whose ball lies farther than the best distance cannot be nearer (the margin
+        // covers the rounding of this test): not measured.
+        const auto& ball = walk.balls[static_cast<std::size_t>(cand)];
+        const double bx = p.x - ball[0], by = p.y - ball[1], bz = p.z - ball[2], lim = ball[3] + reach;
+        if (bx * bx + by * by + bz * bz > (1.0 + 1e-9) * lim * lim) continue;
         Vec3 q;
         const double d = dist2(cand, &q);
         if (d < best) {
           best = d;
+          reach = std::sqrt(best);
           best_q = q;
           next = cand;
         }

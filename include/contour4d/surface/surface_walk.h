@@ -7,6 +7,7 @@
 //! walk takes one to three steps. It finds a local minimum of the distance: a query far from its start,
 //! across a narrow gap from another sheet, may stop on the wrong sheet (use surface_projector.h there).
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct SurfaceWalk {
   std::vector<Triangle> triangles;
   std::vector<std::int32_t> patch;          //!< per triangle
   std::vector<std::uint32_t> start, tris;   //!< triangles of vertex v: tris[start[v] .. start[v + 1])
+  std::vector<std::array<double, 4>> balls; //!< per triangle: a ball holding it (centroid, radius)
 };
 
 //! The walk over `surface` (copied); `patch` has one entry per triangle, or is empty (one patch).
