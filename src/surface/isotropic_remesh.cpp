@@ -14,8 +14,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "contour4d/surface/surface_walk.h"
 
@@ -98,20 +96,34 @@ struct Remesher {
     const std::size_t nh = 3 * f.size();
     opp.assign(nh, kNone);
     con.assign(nh, 0);
-    std::unordered_map<std::uint64_t, std::int32_t> directed;
-    directed.reserve(nh);
-    for (std::size_t h = 0; h < nh; ++h) {
-      const auto hi = static_cast<std::int32_t>(h);
-      if (!directed.emplace(edge_key(from(hi), to(hi)), hi).second) return false;  // not manifold
-    }
-    for (std::size_t h = 0; h < nh; ++h) {
-      const auto hi = static_cast<std::int32_t>(h);
-      const auto it = directed.find(edge_key(to(hi), from(hi)));
-      if (it != directed.end()) opp[h] = it->second;
-    }
-    std::unordered_set<std::uint64_t> cset;
-    for (const auto& e : constrained) cset.insert(edge_key(std::min(e[0], e[1]), std::max(e[0], e[1])));
     const std::size_t nv = x.size();
+    // Each vertex's outgoing half-edges (a few: linear scans beat hashing), then each half-edge's twin.
+    std::vector<std::uint32_t> first(nv + 1, 0);
+    for (std::size_t h = 0; h < nh; ++h) ++first[from(static_cast<std::int32_t>(h)) + 1];
+    for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+    std::vector<std::int32_t> outgoing(nh);
+    {
+      std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+      for (std::size_t h = 0; h < nh; ++h) outgoing[fill[from(static_cast<std::int32_t>(h))]++] = static_cast<std::int32_t>(h);
+    }
+    auto find_directed = [&](std::uint32_t a, std::uint32_t b) {
+      for (std::uint32_t k = first[a]; k < first[a + 1]; ++k)
+        if (to(outgoing[k]) == b) return outgoing[k];
+      return kNone;
+    };
+    for (std::size_t h = 0; h < nh; ++h) {
+      const auto hi = static_cast<std::int32_t>(h);
+      if (find_directed(from(hi), to(hi)) != hi) return false;  // the same directed edge twice: not manifold
+      opp[h] = find_directed(to(hi), from(hi));
+    }
+    // Constrained edges, per lower vertex.
+    std::vector<std::vector<std::uint32_t>> constrained_at(nv);
+    for (const auto& e : constrained)
+      if (std::min(e[0], e[1]) < nv) constrained_at[std::min(e[0], e[1])].push_back(std::max(e[0], e[1]));
+    auto is_constrained = [&](std::uint32_t a, std::uint32_t b) {
+      const auto& c = constrained_at[std::min(a, b)];
+      return std::find(c.begin(), c.end(), std::max(a, b)) != c.end();
+    };
     out.assign(nv, kNone);
     locked.assign(nv, 0);
     bnd.assign(nv, 0);
@@ -119,7 +131,7 @@ struct Remesher {
     for (std::size_t h = 0; h < nh; ++h) {
       const auto hi = static_cast<std::int32_t>(h);
       const std::uint32_t a = from(hi), b = to(hi);
-      if (cset.count(edge_key(std::min(a, b), std::max(a, b)))) con[h] = 1;
+      if (is_constrained(a, b)) con[h] = 1;
       if (guarded(hi)) locked[a] = locked[b] = 1;
       if (opp[h] == kNone) bnd[a] = bnd[b] = 1;
       if (out[a] == kNone) out[a] = hi;
