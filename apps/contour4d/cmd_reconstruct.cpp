@@ -72,9 +72,11 @@ int run_reconstruct(const ReconstructArgs& a) {
   opt.surface.rows = !a.no_rows && a.tiling != "delaunay";
   opt.frame0_rows = a.fast && opt.surface.rows;
   opt.surface.tiling = a.tiling == "delaunay" ? Tiling::Delaunay : Tiling::Bands;
-  // auto: the library's defaults (SurfaceOptions: CGAL's for the remeshed bands, ours with rows).
+  // auto: the library's defaults (ours with rows and for a 4D run's frame 0, Reconstruct4DOptions::frame0_remesher;
+  // CGAL's for a single frame's remeshed bands, SurfaceOptions::remesher).
   if (a.remesher != "auto")
-    opt.surface.remesher = opt.surface.rows_remesher = a.remesher == "fast" ? RemeshEngine::Fast : RemeshEngine::Cgal;
+    opt.surface.remesher = opt.surface.rows_remesher = opt.frame0_remesher =
+        a.remesher == "fast" ? RemeshEngine::Fast : RemeshEngine::Cgal;
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
   opt.surface.cap_max_fill = a.cap_fill;
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
@@ -239,10 +241,10 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       ->check(CLI::IsMember({"bands", "delaunay"}))
       ->capture_default_str();
   app->add_option("--remesher", args->remesher,
-                  "isotropic remeshing of the surface: auto (default: ours with interpolated rows, CGAL's with "
-                  "--no-rows), cgal (CGAL's) or fast (ours, the same algorithm on flat arrays: 1.3-2x faster per "
-                  "frame; with --no-rows slab accuracy within about 10% of cgal's either way and smallest angles not "
-                  "guaranteed)")
+                  "isotropic remeshing of the surface: auto (default: ours with interpolated rows and for frame 0 of "
+                  "all frames, CGAL's for one frame with --no-rows), cgal (CGAL's) or fast (ours, the same algorithm "
+                  "on flat arrays: 1.3-2x faster per frame; for one frame with --no-rows slab accuracy within about 10% "
+                  "of cgal's either way and smallest angles not guaranteed)")
       ->check(CLI::IsMember({"auto", "cgal", "fast"}))
       ->capture_default_str();
   app->add_flag("--fast", args->fast,

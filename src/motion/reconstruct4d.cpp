@@ -35,7 +35,10 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
     ahead[f] = project && (!options.morph.biharmonic || counts(f) != counts(f - 1));
   auto build = [&](std::size_t f) {
     SurfaceOptions so = options.surface;
-    if (f == 0 && !options.frame0_rows) so.rows = false;  // the carried mesh: remeshed bands, evenly spread
+    if (f == 0 && !options.frame0_rows) {  // the carried mesh: remeshed bands, evenly spread
+      so.rows = false;
+      so.remesher = options.frame0_remesher;
+    }
     if (f > 0 && options.fast_targets) {
       // Only the geometry of later frames is used (the morph projects onto it): no self-intersection test,
       // and by default no small-angle repair (it was 40 % of these surfaces' time; the relaxation takes

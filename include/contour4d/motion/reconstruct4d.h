@@ -28,6 +28,11 @@ struct Reconstruct4DOptions {
                               //!< isotropic remeshing spreads the vertices that the morph carries through the
                               //!< cycle evenly (with rows the left heart's ES frame keeps 86.6 % of its angles in
                               //!< 40–80°, against 95.4 %; morph.md)
+  RemeshEngine frame0_remesher = RemeshEngine::Fast;  //!< !frame0_rows: the remeshing of frame 0's bands (replaces
+                                                     //!< surface.remesher there). Ours against CGAL's: faster, a
+                                                     //!< larger share of angles in 40–80° in every input's worst
+                                                     //!< frame but the bifurcation's (91.7 against 92.1 %); min
+                                                     //!< angles and conformity move both ways (morph.md)
   std::function<void(const char* stage, int done, int total)> progress;  //!< optional progress callback
 };
 
