@@ -84,7 +84,8 @@ namespace {
 // and the vertex, and since none projects flat, two of them meet in space only there: no pair
 // through this vertex (or through an edge of it) needs a test. The projection drops a coordinate,
 // so the orientations (exact predicates) and the winding (coordinate comparisons) are exact.
-std::vector<char> untangled_fans(const TriangleMesh& mesh) {
+// Only the vertices flagged in `wanted` are examined (all when it is null).
+std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<char>* wanted) {
   const std::size_t nv = mesh.positions.size();
   std::vector<char> ok(nv, 0);
   std::vector<std::uint32_t> start(nv + 1, 0);
@@ -102,6 +103,7 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh) {
   }
   std::vector<std::uint32_t> ring;
   for (std::size_t v = 0; v < nv; ++v) {
+    if (wanted != nullptr && !(*wanted)[v]) continue;
     const std::uint32_t b = start[v], e = start[v + 1];
     const std::size_t k = e - b;
     if (k < 3 || !is_finite(mesh.positions[v])) continue;
@@ -184,7 +186,14 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
   }
   std::size_t count = 0;
   std::set<std::pair<std::size_t, std::size_t>> first;  // the smallest pairs: same list whatever the visiting order
-  const std::vector<char> untangled = untangled_fans(mesh);
+  // Every pair tested has a flagged triangle: only the fans of their vertices are needed.
+  std::vector<char> wanted;
+  if (only != nullptr) {
+    wanted.assign(nv, 0);
+    for (const Box* b : some)
+      for (std::uint32_t v : mesh.triangles[b->info()]) wanted[v] = 1;
+  }
+  const std::vector<char> untangled = untangled_fans(mesh, only != nullptr ? &wanted : nullptr);
   auto callback = [&](const Box* x, const Box* y) {
     const std::size_t i = std::min(x->info(), y->info()), j = std::max(x->info(), y->info());
     if (i == j) return;

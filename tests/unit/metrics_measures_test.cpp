@@ -164,6 +164,7 @@ TEST(Topology, SelfIntersectionsOfFoldedFansAgreeWithCgal) {
       EXPECT_EQ(ours[k].second, cgal[k][1]);
     }
     EXPECT_EQ(count_self_intersections(rigid_motion(m)), n) << "trial " << trial;
+    EXPECT_EQ(count_self_intersections_of(m, std::vector<char>(m.triangles.size(), 1)), n) << "trial " << trial;
     if (trial > 0) {
       EXPECT_GT(n, 0u) << "trial " << trial;
     }
