@@ -101,7 +101,7 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
       if (valid_triangle(t, nv))
         for (int k = 0; k < 3; ++k) opposite[fill[t[k]]++] = {t[(k + 1) % 3], t[(k + 2) % 3]};
   }
-  std::vector<std::uint32_t> ring;
+  std::vector<std::uint32_t> ring, sorted;
   for (std::size_t v = 0; v < nv; ++v) {
     if (wanted != nullptr && !(*wanted)[v]) continue;
     const std::uint32_t b = start[v], e = start[v + 1];
@@ -123,7 +123,7 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
       if (closed) at = opposite[next][1];
     }
     if (!closed || at != ring[0]) continue;
-    std::vector<std::uint32_t> sorted = ring;  // each neighbour once
+    sorted.assign(ring.begin(), ring.end());  // each neighbour once
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
     const Vec3 pv = mesh.positions[v];

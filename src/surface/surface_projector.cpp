@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "contour4d/surface/surface_walk.h"
@@ -53,7 +54,7 @@ SurfaceProjector::SurfaceProjector(const TriangleMesh& s) : impl_(std::make_uniq
     kept.triangles.push_back(t);
   }
   if (impl_->triangles.empty()) return;
-  impl_->walk = make_surface_walk(kept);
+  impl_->walk = make_surface_walk(std::move(kept));
   impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
 }
 

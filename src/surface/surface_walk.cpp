@@ -44,10 +44,10 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
   return a + (vb * denom) * ab + (vc * denom) * ac;
 }
 
-SurfaceWalk make_surface_walk(const TriangleMesh& surface, std::vector<std::int32_t> patch) {
+SurfaceWalk make_surface_walk(TriangleMesh surface, std::vector<std::int32_t> patch) {
   SurfaceWalk w;
-  w.positions = surface.positions;
-  w.triangles = surface.triangles;
+  w.positions = std::move(surface.positions);
+  w.triangles = std::move(surface.triangles);
   w.patch = std::move(patch);
   w.patch.resize(w.triangles.size(), 0);
   w.start.assign(w.positions.size() + 1, 0);

@@ -25,8 +25,8 @@ struct SurfaceWalk {
   std::vector<std::array<double, 4>> balls; //!< per triangle: a ball holding it (centroid, radius)
 };
 
-//! The walk over `surface` (copied); `patch` has one entry per triangle, or is empty (one patch).
-SurfaceWalk make_surface_walk(const TriangleMesh& surface, std::vector<std::int32_t> patch = {});
+//! The walk over `surface` (taken over); `patch` has one entry per triangle, or is empty (one patch).
+SurfaceWalk make_surface_walk(TriangleMesh surface, std::vector<std::int32_t> patch = {});
 
 //! The closest point to p found by walking from triangle `hint` (a valid triangle index), which is
 //! updated to the triangle of the answer: pass it again for the next nearby query.
