@@ -110,7 +110,9 @@ class BoundaryDistance {
     }
   }
 
-  double operator()(Vec2 p) const {
+  //! The distance from p to the nearest segment; with a finite `limit`, a value that compares with
+  //! `limit` as the distance does, found without searching beyond it.
+  double operator()(Vec2 p, double limit = std::numeric_limits<double>::infinity()) const {
     double d = std::numeric_limits<double>::infinity();
     if (segments_.empty()) return d;
     // A point outside the grid (never one of a cap's interior points): the ring bound below does not
@@ -120,14 +122,27 @@ class BoundaryDistance {
       return d;
     }
     const int ci = cx(p.x), cj = cy(p.y);
+    auto visit = [&](int i, int j) {
+      for (std::size_t s : cells_[index(i, j)]) d = std::min(d, segment_distance(p, segments_[s][0], segments_[s][1]));
+    };
     for (int r = 0; r <= std::max(nx_, ny_); ++r) {
-      for (int j = cj - r; j <= cj + r; ++j)
-        for (int i = ci - r; i <= ci + r; ++i) {
-          if (std::max(std::abs(i - ci), std::abs(j - cj)) != r || i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
-          for (std::size_t s : cells_[index(i, j)]) d = std::min(d, segment_distance(p, segments_[s][0], segments_[s][1]));
+      // The cells at Chebyshev distance r from the point's cell, within the grid: its top and bottom
+      // rows, then the rest of its left and right columns.
+      const int i0 = std::max(ci - r, 0), i1 = std::min(ci + r, nx_ - 1);
+      if (r == 0) {
+        visit(ci, cj);
+      } else {
+        if (cj - r >= 0)
+          for (int i = i0; i <= i1; ++i) visit(i, cj - r);
+        if (cj + r < ny_)
+          for (int i = i0; i <= i1; ++i) visit(i, cj + r);
+        for (int j = std::max(cj - r + 1, 0); j <= std::min(cj + r - 1, ny_ - 1); ++j) {
+          if (ci - r >= 0) visit(ci - r, j);
+          if (ci + r < nx_) visit(ci + r, j);
         }
+      }
       // Cells of ring r + 1 and beyond are at least r cells from a point within its own cell.
-      if (d <= r * cell_) break;
+      if (d <= r * cell_ || r * cell_ >= limit) break;
     }
     return d;
   }
@@ -167,7 +182,7 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
       if (original.count(v) || cdt.are_there_incident_constraints(v)) continue;
       const Vec2 p{v->point().x(), v->point().y()};
-      if (boundary_distance(p) < 0.4 * options.edge) continue;  // would make slivers near the loop
+      if (boundary_distance(p, 0.4 * options.edge) < 0.4 * options.edge) continue;  // would make slivers near the loop
       interior.push_back(p);
     }
     // Keep the order independent of CGAL's vertex storage: sort by position is not rigid-invariant,
