@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -162,6 +163,96 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
   return ok;
 }
 
+// Calls f(x, y) once for every pair of boxes (x before y in `boxes`) whose closed boxes overlap and of
+// which at least one is flagged (`flagged` null: every box), as CGAL's box_intersection_d would, through a
+// grid: each box is listed in every cell of about two median box sizes that it meets, and a pair is met
+// in the cell of the larger of their lower corners only (a cell that both boxes meet), so once. A
+// surface's boxes are small and evenly spread; where the cells are crowded (more pair tests than
+// kCrowded per box) it returns false having called nothing, and the caller asks CGAL.
+template <class F>
+bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vector<char>* flagged, F&& f) {
+  constexpr double kCrowded = 64.0;
+  const std::size_t n = boxes.size();
+  if (n < 2) return true;
+  std::vector<double> sizes;
+  sizes.reserve(n);
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (const Box* b : boxes) {
+    double big = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      big = std::max(big, b->max_coord(d) - b->min_coord(d));
+      lo[d] = std::min(lo[d], b->min_coord(d));
+      hi[d] = std::max(hi[d], b->max_coord(d));
+    }
+    sizes.push_back(big);
+  }
+  std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(n / 2), sizes.end());
+  double cell = 2.0 * sizes[n / 2];
+  if (!(cell > 0.0) || !std::isfinite(cell)) return false;
+  std::int64_t size[3];
+  // Cells double until the block holds at most 8 per box.
+  for (;;) {
+    double cells = 1.0;
+    for (int d = 0; d < 3; ++d) {
+      const double extent = std::floor((hi[d] - lo[d]) / cell) + 1.0;
+      if (!(extent < 1e9)) return false;
+      size[d] = static_cast<std::int64_t>(extent);
+      cells *= extent;
+    }
+    if (cells <= std::max(4096.0, 8.0 * static_cast<double>(n))) break;
+    cell *= 2.0;
+  }
+  auto at = [&](double v, int d) {
+    return std::clamp(static_cast<std::int64_t>(std::floor((v - lo[d]) / cell)), std::int64_t{0}, size[d] - 1);
+  };
+  auto index = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return static_cast<std::size_t>((i * size[1] + j) * size[2] + k);
+  };
+  auto visit = [&](const Box* b, auto&& g) {
+    const std::int64_t i0 = at(b->min_coord(0), 0), i1 = at(b->max_coord(0), 0), j0 = at(b->min_coord(1), 1),
+                       j1 = at(b->max_coord(1), 1), k0 = at(b->min_coord(2), 2), k1 = at(b->max_coord(2), 2);
+    for (std::int64_t i = i0; i <= i1; ++i)
+      for (std::int64_t j = j0; j <= j1; ++j)
+        for (std::int64_t k = k0; k <= k1; ++k) g(index(i, j, k));
+  };
+  const auto ncells = static_cast<std::size_t>(size[0] * size[1] * size[2]);
+  std::vector<std::uint32_t> start(ncells + 1, 0);
+  for (const Box* b : boxes) visit(b, [&](std::size_t c) { ++start[c + 1]; });
+  double tests = 0.0;
+  for (std::size_t c = 0; c < ncells; ++c) tests += 0.5 * static_cast<double>(start[c + 1]) * static_cast<double>(start[c + 1]);
+  if (tests > kCrowded * static_cast<double>(n)) return false;
+  for (std::size_t c = 0; c < ncells; ++c) start[c + 1] += start[c];
+  std::vector<std::uint32_t> items(start[ncells]);
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t m = 0; m < n; ++m) visit(boxes[m], [&](std::size_t c) { items[fill[c]++] = static_cast<std::uint32_t>(m); });
+  }
+  auto is_flagged = [&](const Box* b) { return flagged == nullptr || (b->info() < flagged->size() && (*flagged)[b->info()]); };
+  std::vector<char> marked(n, 1);
+  if (flagged != nullptr)
+    for (std::size_t m = 0; m < n; ++m) marked[m] = is_flagged(boxes[m]) ? 1 : 0;
+  for (std::size_t c = 0; c < ncells; ++c)
+    for (std::uint32_t a = start[c]; a < start[c + 1]; ++a) {
+      const std::uint32_t p = items[a];
+      const Box* x = boxes[p];
+      for (std::uint32_t b = a + 1; b < start[c + 1]; ++b) {
+        const std::uint32_t q = items[b];
+        if (!marked[p] && !marked[q]) continue;
+        const Box* y = boxes[q];
+        bool overlap = true;
+        for (int d = 0; d < 3 && overlap; ++d)
+          overlap = x->min_coord(d) <= y->max_coord(d) && y->min_coord(d) <= x->max_coord(d);
+        if (!overlap) continue;
+        const double m0 = std::max(x->min_coord(0), y->min_coord(0)), m1 = std::max(x->min_coord(1), y->min_coord(1)),
+                     m2 = std::max(x->min_coord(2), y->min_coord(2));
+        if (index(at(m0, 0), at(m1, 1), at(m2, 2)) != c) continue;  // met in another cell
+        if (p < q) f(x, y);
+        else f(y, x);
+      }
+    }
+  return true;
+}
+
 // count_self_intersections and its restriction to flagged triangles (`only` null: all pairs).
 std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector<char>* only,
                                      std::vector<std::pair<std::size_t, std::size_t>>* pairs, std::size_t max_pairs_listed) {
@@ -209,10 +300,13 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
       if (first.size() > max_pairs_listed) first.erase(std::prev(first.end()));
     }
   };
-  if (only == nullptr)
+  if (only != nullptr && some.empty()) {
+  } else if (grid_overlapping_pairs(all, only, callback)) {
+  } else if (only == nullptr) {
     CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), callback, std::ptrdiff_t(2000));
-  else if (!some.empty())
+  } else {
     CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), callback);
+  }
   if (pairs != nullptr) pairs->assign(first.begin(), first.end());
   return count;
 }

@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -181,6 +182,47 @@ TEST(Topology, SelfIntersectionsOfFoldedFansAgreeWithCgal) {
   const std::size_t n = count_self_intersections(twice);
   EXPECT_EQ(n, self_intersecting_pairs(twice).size());
   EXPECT_GT(n, 0u);
+}
+
+// The box pairs come from a grid (topology.cpp, grid_overlapping_pairs) unless its cells are crowded,
+// when CGAL's box search takes over: on soups of small triangles (the grid), of small triangles with a
+// few large ones across them, and of triangles heaped in one spot (crowded), the count and the pairs
+// equal CGAL's self_intersections, and the count restricted to flagged triangles equals the number of
+// CGAL's pairs with a flagged triangle.
+TEST(Topology, SelfIntersectionsOfTriangleSoupsAgreeWithCgal) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 6; ++trial) {
+    std::uniform_real_distribution<double> where(0.0, trial >= 4 ? 0.5 : 30.0), size(-1.0, 1.0);
+    TriangleMesh m;
+    for (std::uint32_t k = 0; k < 600; ++k) {
+      // Some triangles share a vertex (k % 7 == 1) or an edge (k % 11 == 3) with the one before and lie
+      // beside it (those pairs never count).
+      const bool vertex = k % 7 == 1, edge = !vertex && k % 11 == 3;
+      const Vec3 c = vertex || edge ? m.positions.back() : Vec3{where(rng), where(rng), where(rng)};
+      const double s = (trial % 2 == 1 && k % 100 == 0) ? 15.0 : 1.0;  // odd trials: six large triangles
+      const auto next = static_cast<std::uint32_t>(m.positions.size());
+      for (int corner = 0; corner < 3; ++corner) m.positions.push_back(c + s * Vec3{size(rng), size(rng), size(rng)});
+      Triangle t{next, next + 1, next + 2};
+      if (vertex) t[0] = m.triangles.back()[1];
+      if (edge) t = {m.triangles.back()[0], m.triangles.back()[2], next};
+      m.triangles.push_back(t);
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> ours;
+    const std::size_t n = count_self_intersections(m, &ours, std::numeric_limits<std::size_t>::max());
+    const auto cgal = self_intersecting_pairs(m);
+    ASSERT_EQ(n, cgal.size()) << "trial " << trial;
+    ASSERT_EQ(ours.size(), n) << "trial " << trial;
+    ASSERT_GT(n, 0u) << "trial " << trial;
+    for (std::size_t k = 0; k < n; ++k) {
+      EXPECT_EQ(ours[k].first, cgal[k][0]) << "trial " << trial;
+      EXPECT_EQ(ours[k].second, cgal[k][1]) << "trial " << trial;
+    }
+    std::vector<char> only(m.triangles.size(), 0);
+    for (std::size_t t = 0; t < only.size(); t += 3) only[t] = 1;
+    std::size_t with_flagged = 0;
+    for (const auto& pr : cgal) with_flagged += only[pr[0]] || only[pr[1]];
+    EXPECT_EQ(count_self_intersections_of(m, only), with_flagged) << "trial " << trial;
+  }
 }
 
 TEST(Topology, IntersectsAnyAgreesWithTheCountOfEachTriangle) {
