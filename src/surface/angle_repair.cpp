@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -38,8 +39,8 @@ Vec3 face_normal(const std::vector<Vec3>& x, const Triangle& t) {
 
 // Triangles binned by the cells their bounding boxes touch: the candidates that a moved vertex's
 // triangles could cut through. A dense block of cells over the triangles' extent, each with its
-// triangles in one flat array (count, prefix sum, fill: no hashing, no per-cell allocation); cells
-// outside the block hold no triangle.
+// triangles in one flat array (count, prefix sum, fill: no hashing, no per-cell allocation); boxes
+// beyond the block are clamped onto its border cells.
 struct TriangleGrid {
   double cell = 1.0;
   std::int64_t lo[3] = {0, 0, 0}, size[3] = {0, 0, 0};
@@ -50,9 +51,11 @@ struct TriangleGrid {
   // Calls f(cell index) for every cell of the block that the box [a, b] touches.
   template <class F>
   void visit(Vec3 a, Vec3 b, F&& f) const {
-    const std::int64_t from[3] = {std::max(at(a.x), lo[0]), std::max(at(a.y), lo[1]), std::max(at(a.z), lo[2])};
-    const std::int64_t to[3] = {std::min(at(b.x), lo[0] + size[0] - 1), std::min(at(b.y), lo[1] + size[1] - 1),
-                                std::min(at(b.z), lo[2] + size[2] - 1)};
+    // Clamped into the block at both ends (a monotone map: boxes that overlap meet a common cell, also
+    // a box that moved out of the block since binning).
+    auto in = [&](std::int64_t c, int d) { return std::clamp(c, lo[d], lo[d] + size[d] - 1); };
+    const std::int64_t from[3] = {in(at(a.x), 0), in(at(a.y), 1), in(at(a.z), 2)};
+    const std::int64_t to[3] = {in(at(b.x), 0), in(at(b.y), 1), in(at(b.z), 2)};
     for (std::int64_t i = from[0]; i <= to[0]; ++i)
       for (std::int64_t j = from[1]; j <= to[1]; ++j)
         for (std::int64_t k = from[2]; k <= to[2]; ++k)
@@ -109,18 +112,36 @@ TriangleGrid bin_triangles(const std::vector<Vec3>& x, const std::vector<Triangl
   return g;
 }
 
+// Triangles moved since binning, listed once by each cell their boxes met when they moved (earlier
+// places stay listed: a candidate too many is only tested).
+using MovedCells = std::unordered_map<std::size_t, std::vector<std::uint32_t>>;
+
+void list_moved(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles, const std::vector<std::uint32_t>& fs,
+                const TriangleGrid& grid, MovedCells& moved) {
+  for (std::uint32_t f : fs) {
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (std::uint32_t w : triangles[f]) grow(lo, hi, x[w]);
+    if (!is_finite(lo) || !is_finite(hi)) continue;
+    grid.visit(lo, hi, [&](std::size_t c) {
+      std::vector<std::uint32_t>& list = moved[c];
+      if (std::find(list.begin(), list.end(), f) == list.end()) list.push_back(f);
+    });
+  }
+}
+
 // True when one of `fs` (the triangles of a vertex at its new position) intersects a triangle of
-// the grid other than through a shared vertex or edge.
+// the grid or of `moved` other than through a shared vertex or edge.
 bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
-                     const std::vector<std::uint32_t>& fs, const TriangleGrid& grid) {
+                     const std::vector<std::uint32_t>& fs, const TriangleGrid& grid, const MovedCells& moved) {
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (std::uint32_t f : fs)
     for (std::uint32_t w : triangles[f]) grow(lo, hi, x[w]);
-  // Neighbours moved since binning by well under a cell: widen the box by half a cell.
+  // The triangles of the vertices being tried may have moved since binning: widen the box by half a cell.
   const Vec3 pad{0.5 * grid.cell, 0.5 * grid.cell, 0.5 * grid.cell};
   std::vector<std::uint32_t> near;
   grid.visit(lo - pad, hi + pad, [&](std::size_t c) {
     near.insert(near.end(), grid.items.begin() + grid.start[c], grid.items.begin() + grid.start[c + 1]);
+    if (const auto it = moved.find(c); it != moved.end()) near.insert(near.end(), it->second.begin(), it->second.end());
   });
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
@@ -138,6 +159,9 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
   // Active set: after the first pass, a vertex is tried again only if it or a vertex of its ring
   // moved in the previous pass (else its ring is unchanged and the search would fail again).
   std::vector<char> moved(positions.size(), 1);
+  // Binned once, when a move is first to be checked; the triangles moved since are listed beside it.
+  std::optional<TriangleGrid> grid;
+  MovedCells moved_cells;
   for (int pass = 0; pass < options.passes; ++pass) {
     std::vector<char> active(positions.size(), 0);
     for (std::size_t v = 0; v < positions.size(); ++v)
@@ -154,8 +178,6 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
     std::sort(todo.begin(), todo.end());
     todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     if (todo.empty()) break;
-    // Binned once per pass, and only when a move is to be checked.
-    std::optional<TriangleGrid> grid;
     std::size_t pass_moves = 0;
     for (std::uint32_t v : todo) {
       const auto& fs = ring[v];
@@ -239,9 +261,10 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
           if (!is_finite(c) || quality(c) <= start_q + 1e-9) continue;
           positions[v] = c;
           if (!grid) grid = bin_triangles(positions, triangles);
-          if (!ring_intersects(positions, triangles, fs, *grid)) {
+          if (!ring_intersects(positions, triangles, fs, *grid, moved_cells)) {
             ++pass_moves;
             moved[v] = 1;
+            list_moved(positions, triangles, fs, *grid, moved_cells);
             break;
           }
           positions[v] = from;
