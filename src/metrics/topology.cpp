@@ -174,17 +174,20 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
   constexpr double kCrowded = 64.0;
   const std::size_t n = boxes.size();
   if (n < 2) return true;
-  std::vector<double> sizes;
-  sizes.reserve(n);
+  // The boxes' corners side by side (min x y z, max x y z), and their extent.
+  std::vector<std::array<double, 6>> box(n);
+  std::vector<double> sizes(n);
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (const Box* b : boxes) {
+  for (std::size_t m = 0; m < n; ++m) {
     double big = 0.0;
     for (int d = 0; d < 3; ++d) {
-      big = std::max(big, b->max_coord(d) - b->min_coord(d));
-      lo[d] = std::min(lo[d], b->min_coord(d));
-      hi[d] = std::max(hi[d], b->max_coord(d));
+      box[m][d] = boxes[m]->min_coord(d);
+      box[m][d + 3] = boxes[m]->max_coord(d);
+      big = std::max(big, box[m][d + 3] - box[m][d]);
+      lo[d] = std::min(lo[d], box[m][d]);
+      hi[d] = std::max(hi[d], box[m][d + 3]);
     }
-    sizes.push_back(big);
+    sizes[m] = big;
   }
   std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(n / 2), sizes.end());
   double cell = 2.0 * sizes[n / 2];
@@ -202,22 +205,29 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
     if (cells <= std::max(4096.0, 8.0 * static_cast<double>(n))) break;
     cell *= 2.0;
   }
+  // Coordinates are at least lo: truncation is the floor. Monotone, so the cell of the larger of two
+  // lower corners is the larger of their cells.
   auto at = [&](double v, int d) {
-    return std::clamp(static_cast<std::int64_t>(std::floor((v - lo[d]) / cell)), std::int64_t{0}, size[d] - 1);
+    return static_cast<std::int32_t>(std::min(static_cast<std::int64_t>((v - lo[d]) / cell), size[d] - 1));
   };
+  std::vector<std::array<std::int32_t, 6>> span(n);  // per box: its cells from (i0, j0, k0) to (i1, j1, k1)
+  for (std::size_t m = 0; m < n; ++m)
+    for (int d = 0; d < 3; ++d) {
+      span[m][d] = at(box[m][d], d);
+      span[m][d + 3] = at(box[m][d + 3], d);
+    }
   auto index = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
     return static_cast<std::size_t>((i * size[1] + j) * size[2] + k);
   };
-  auto visit = [&](const Box* b, auto&& g) {
-    const std::int64_t i0 = at(b->min_coord(0), 0), i1 = at(b->max_coord(0), 0), j0 = at(b->min_coord(1), 1),
-                       j1 = at(b->max_coord(1), 1), k0 = at(b->min_coord(2), 2), k1 = at(b->max_coord(2), 2);
-    for (std::int64_t i = i0; i <= i1; ++i)
-      for (std::int64_t j = j0; j <= j1; ++j)
-        for (std::int64_t k = k0; k <= k1; ++k) g(index(i, j, k));
+  auto visit = [&](std::size_t m, auto&& g) {
+    const auto& c = span[m];
+    for (std::int64_t i = c[0]; i <= c[3]; ++i)
+      for (std::int64_t j = c[1]; j <= c[4]; ++j)
+        for (std::int64_t k = c[2]; k <= c[5]; ++k) g(index(i, j, k));
   };
   const auto ncells = static_cast<std::size_t>(size[0] * size[1] * size[2]);
   std::vector<std::uint32_t> start(ncells + 1, 0);
-  for (const Box* b : boxes) visit(b, [&](std::size_t c) { ++start[c + 1]; });
+  for (std::size_t m = 0; m < n; ++m) visit(m, [&](std::size_t c) { ++start[c + 1]; });
   double tests = 0.0;
   for (std::size_t c = 0; c < ncells; ++c) tests += 0.5 * static_cast<double>(start[c + 1]) * static_cast<double>(start[c + 1]);
   if (tests > kCrowded * static_cast<double>(n)) return false;
@@ -225,31 +235,35 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
   std::vector<std::uint32_t> items(start[ncells]);
   {
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t m = 0; m < n; ++m) visit(boxes[m], [&](std::size_t c) { items[fill[c]++] = static_cast<std::uint32_t>(m); });
+    for (std::size_t m = 0; m < n; ++m) visit(m, [&](std::size_t c) { items[fill[c]++] = static_cast<std::uint32_t>(m); });
   }
-  auto is_flagged = [&](const Box* b) { return flagged == nullptr || (b->info() < flagged->size() && (*flagged)[b->info()]); };
   std::vector<char> marked(n, 1);
   if (flagged != nullptr)
-    for (std::size_t m = 0; m < n; ++m) marked[m] = is_flagged(boxes[m]) ? 1 : 0;
-  for (std::size_t c = 0; c < ncells; ++c)
-    for (std::uint32_t a = start[c]; a < start[c + 1]; ++a) {
-      const std::uint32_t p = items[a];
-      const Box* x = boxes[p];
-      for (std::uint32_t b = a + 1; b < start[c + 1]; ++b) {
-        const std::uint32_t q = items[b];
-        if (!marked[p] && !marked[q]) continue;
-        const Box* y = boxes[q];
-        bool overlap = true;
-        for (int d = 0; d < 3 && overlap; ++d)
-          overlap = x->min_coord(d) <= y->max_coord(d) && y->min_coord(d) <= x->max_coord(d);
-        if (!overlap) continue;
-        const double m0 = std::max(x->min_coord(0), y->min_coord(0)), m1 = std::max(x->min_coord(1), y->min_coord(1)),
-                     m2 = std::max(x->min_coord(2), y->min_coord(2));
-        if (index(at(m0, 0), at(m1, 1), at(m2, 2)) != c) continue;  // met in another cell
-        if (p < q) f(x, y);
-        else f(y, x);
-      }
+    for (std::size_t m = 0; m < n; ++m) {
+      const std::size_t t = boxes[m]->info();
+      marked[m] = t < flagged->size() && (*flagged)[t] ? 1 : 0;
     }
+  for (std::int64_t ci = 0; ci < size[0]; ++ci)
+    for (std::int64_t cj = 0; cj < size[1]; ++cj)
+      for (std::int64_t ck = 0; ck < size[2]; ++ck) {
+        const std::size_t c = index(ci, cj, ck);
+        for (std::uint32_t a = start[c]; a < start[c + 1]; ++a) {
+          const std::uint32_t p = items[a];
+          const auto& x = box[p];
+          const auto& sx = span[p];
+          for (std::uint32_t b = a + 1; b < start[c + 1]; ++b) {
+            const std::uint32_t q = items[b];
+            const auto& y = box[q];
+            if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) continue;
+            if (!marked[p] && !marked[q]) continue;
+            // Met only in the cell of the larger lower corner.
+            const auto& sy = span[q];
+            if (std::max(sx[0], sy[0]) != ci || std::max(sx[1], sy[1]) != cj || std::max(sx[2], sy[2]) != ck) continue;
+            if (p < q) f(boxes[p], boxes[q]);
+            else f(boxes[q], boxes[p]);
+          }
+        }
+      }
   return true;
 }
 
