@@ -148,6 +148,16 @@ bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& tr
   return intersects_any(x, triangles, fs, near);
 }
 
+// The eight steps of the search (cos, sin of d·π/4), worked out once.
+const std::array<std::array<double, 2>, 8> kCompass = [] {
+  std::array<std::array<double, 2>, 8> c{};
+  for (int d = 0; d < 8; ++d) {
+    const double a = d * std::numbers::pi / 4.0;
+    c[static_cast<std::size_t>(d)] = {std::cos(a), std::sin(a)};
+  }
+  return c;
+}();
+
 // Below this smallest angle (degrees) a triangle is a sliver (see optimise).
 constexpr double kSliverDeg = 5.0;
 
@@ -232,9 +242,8 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
       for (int step = 0; step < options.steps && h > 1e-4 * len; ++step) {
         Vec3 cand_best = best;
         double cand_q = best_q;
-        for (int d = 0; d < 8; ++d) {
-          const double a = d * std::numbers::pi / 4.0;
-          const Vec3 want = best + h * (std::cos(a) * e1 + std::sin(a) * e2);
+        for (const auto& [cd, sd] : kCompass) {
+          const Vec3 want = best + h * (cd * e1 + sd * e2);
           const Vec3 c = snap(v, want);
           // A snap that lands far from the step went to another sheet of the surface (across a
           // narrow gap): never follow it.
