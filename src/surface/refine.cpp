@@ -137,12 +137,21 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
   std::size_t flips = 0;
   for (int round = 0; round < options.max_rounds; ++round) {
     std::size_t flipped_now = 0;
-    // Deterministic order: undirected edges sorted by their vertex ids.
-    std::vector<Edge> edges;
+    // Deterministic order: undirected edges sorted by their vertex ids (bucketed by the lower one, each
+    // bucket of a few sorted by the other).
+    std::vector<std::uint32_t> bucket(nv + 1, 0);
     for (const auto& tri : tris)
       for (int k = 0; k < 3; ++k)
-        if (tri[k] < tri[(k + 1) % 3]) edges.push_back({tri[k], tri[(k + 1) % 3]});
-    std::sort(edges.begin(), edges.end());
+        if (tri[k] < tri[(k + 1) % 3]) ++bucket[tri[k] + 1];
+    for (std::size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
+    std::vector<Edge> edges(bucket[nv]);
+    for (const auto& tri : tris)
+      for (int k = 0; k < 3; ++k)
+        if (tri[k] < tri[(k + 1) % 3]) edges[bucket[tri[k]]++] = {tri[k], tri[(k + 1) % 3]};
+    for (std::size_t v = 0, from = 0; v < nv; ++v) {  // bucket[v] now ends vertex v's edges
+      std::sort(edges.begin() + static_cast<std::ptrdiff_t>(from), edges.begin() + static_cast<std::ptrdiff_t>(bucket[v]));
+      from = bucket[v];
+    }
     for (const Edge& e : edges) {
       const auto [a, b] = e;
       if (is_fixed(a, b)) continue;
