@@ -294,20 +294,41 @@ double neighbour_share(const std::vector<Node>& nodes, const PairLinks& pair_lin
 // nothing else) is widened (never narrowed) to that curve's volume (capping.h, fill_end_band).
 void fill_end_bands(TriangleMesh& m, const std::vector<CapFill>& caps, const std::vector<Node>& nodes,
                     const std::vector<SliceInfo>& slices, const PairLinks& pair_links, const std::vector<char>& fixed) {
-  using Edge = std::pair<std::uint32_t, std::uint32_t>;
-  auto key = [](std::uint32_t a, std::uint32_t c) { return Edge{std::min(a, c), std::max(a, c)}; };
-  std::set<Edge> contour_edges;
+  auto key = [](std::uint32_t a, std::uint32_t c) {
+    return (static_cast<std::uint64_t>(std::min(a, c)) << 32) | std::max(a, c);
+  };
+  std::vector<std::uint64_t> contour_edges;  // sorted keys
   std::vector<int> vertex_node(m.positions.size(), -1);
   for (std::size_t n = 0; n < nodes.size(); ++n)
     for (std::size_t k = 0; k < nodes[n].chain.size(); ++k) {
       vertex_node[nodes[n].chain[k]] = static_cast<int>(n);
-      contour_edges.insert(key(nodes[n].chain[k], nodes[n].chain[(k + 1) % nodes[n].chain.size()]));
+      contour_edges.push_back(key(nodes[n].chain[k], nodes[n].chain[(k + 1) % nodes[n].chain.size()]));
     }
-  std::map<Edge, std::vector<std::uint32_t>> edge_triangles;
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-    const Triangle& tr = m.triangles[t];
-    for (int k = 0; k < 3; ++k) edge_triangles[key(tr[k], tr[(k + 1) % 3])].push_back(static_cast<std::uint32_t>(t));
+  std::sort(contour_edges.begin(), contour_edges.end());
+  auto on_contour = [&](std::uint64_t e) { return std::binary_search(contour_edges.begin(), contour_edges.end(), e); };
+  // The triangles of each edge in increasing order: per lower vertex, (upper vertex, triangle) entries
+  // filled in triangle order.
+  const std::size_t nv = m.positions.size();
+  std::vector<std::uint32_t> first(nv + 1, 0);
+  for (const Triangle& tr : m.triangles)
+    for (int k = 0; k < 3; ++k) ++first[std::min(tr[k], tr[(k + 1) % 3]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+  std::vector<std::array<std::uint32_t, 2>> incident(first[nv]);
+  {
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      const Triangle& tr = m.triangles[t];
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = tr[k], c = tr[(k + 1) % 3];
+        incident[fill[std::min(a, c)]++] = {std::max(a, c), static_cast<std::uint32_t>(t)};
+      }
+    }
   }
+  auto edge_triangles = [&](std::uint64_t e, auto&& f) {
+    const auto a = static_cast<std::uint32_t>(e >> 32), c = static_cast<std::uint32_t>(e & 0xffffffffu);
+    for (std::uint32_t k = first[a]; k < first[a + 1]; ++k)
+      if (incident[k][0] == c) f(incident[k][1]);
+  };
   const double orientation = signed_volume(m) >= 0.0 ? 1.0 : -1.0;
   auto centroid = [&](const std::vector<int>& ns) {
     double w = 0.0;
@@ -348,11 +369,12 @@ void fill_end_bands(TriangleMesh& m, const std::vector<CapFill>& caps, const std
     std::vector<std::uint32_t> stack;
     const auto& chain = nodes[end].chain;
     for (std::size_t k = 0; k < chain.size(); ++k)
-      for (std::uint32_t t : edge_triangles[key(chain[k], chain[(k + 1) % chain.size()])])
+      edge_triangles(key(chain[k], chain[(k + 1) % chain.size()]), [&](std::uint32_t t) {
         if (!seen[t] && !cap_set.count(m.triangles[t])) {
           seen[t] = 1;
           stack.push_back(t);
         }
+      });
     EndBand band;
     while (!stack.empty() && simple) {
       const std::uint32_t t = stack.back();
@@ -362,13 +384,14 @@ void fill_end_bands(TriangleMesh& m, const std::vector<CapFill>& caps, const std
       for (int k = 0; k < 3; ++k) {
         const int vn = vertex_node[tr[k]];
         if (vn >= 0 && vn != end && std::find(partners.begin(), partners.end(), vn) == partners.end()) simple = false;
-        const Edge e = key(tr[k], tr[(k + 1) % 3]);
-        if (contour_edges.count(e)) continue;
-        for (std::uint32_t u : edge_triangles[e])
+        const std::uint64_t e = key(tr[k], tr[(k + 1) % 3]);
+        if (on_contour(e)) continue;
+        edge_triangles(e, [&](std::uint32_t u) {
           if (!seen[u]) {
             seen[u] = 1;
             stack.push_back(u);
           }
+        });
       }
     }
     if (!simple || band.triangles.empty()) continue;
