@@ -49,25 +49,83 @@ BandPath band_path_from(const std::vector<std::uint32_t>& lower, const std::vect
   std::vector<double> cost((n + 1) * W, inf);
   std::vector<char> from((n + 1) * W, 0);  // 1: came by advancing lower, 2: by advancing upper
   if (!allowed(0, 0)) return out;
+  // Pruning (exact: the path found is the full programme's, to the bit). A greedy path's cost bounds
+  // the optimum; every step still to come adds a spanning edge at least `gap` long (the chains'
+  // separation along the line between their centroids, which no spanning edge can undercut); a state
+  // whose cost plus that floor exceeds the bound (with a 1e-9 margin for the rounding of the sums) lies
+  // on no optimal path and is left out. Rows of a band are parallel chains: the states kept form a
+  // narrow corridor along the diagonal.
+  double bound = inf, gap = 0.0;
+  {
+    Vec3 cl{}, cu{};
+    for (std::size_t i = 0; i < n; ++i) cl += L[i];
+    for (std::size_t j = 0; j < m; ++j) cu += U[j];
+    const Vec3 axis = cu / static_cast<double>(m) - cl / static_cast<double>(n);
+    const double len = norm(axis);
+    if (len > 0 && std::isfinite(len)) {
+      const Vec3 a = axis / len;
+      double lo_top = inf, hi_bottom = -inf;
+      for (std::size_t i = 0; i < n; ++i) hi_bottom = std::max(hi_bottom, dot(a, L[i]));
+      for (std::size_t j = 0; j < m; ++j) lo_top = std::min(lo_top, dot(a, U[j]));
+      if (std::isfinite(lo_top - hi_bottom)) gap = std::max(0.0, lo_top - hi_bottom) * (1.0 - 1e-6);
+    }
+    // The greedy path: the shorter next spanning edge, within the groups.
+    std::size_t i = 0, j = 0;
+    double c = 0.0;
+    while (i < n || j < m) {
+      const bool can_l = i < n && allowed(i + 1, j), can_u = j < m && allowed(i, j + 1);
+      if (!can_l && !can_u) break;
+      const double dl = can_l ? distance(L[i + 1], U[j]) : inf, du = can_u ? distance(L[i], U[j + 1]) : inf;
+      if (dl <= du) {
+        c += dl;
+        ++i;
+      } else {
+        c += du;
+        ++j;
+      }
+    }
+    if (i == n && j == m) bound = c;
+  }
+  auto pruned = [&](double c, std::size_t i, std::size_t j) {
+    return (c + static_cast<double>(n - i + m - j) * gap) * (1.0 - 1e-9) > bound;
+  };
   cost[0] = 0.0;
   // Both ways into state (i, j) add the spanning edge (L(i), U(j)): it is measured once per state.
-  // The lower step is tried first and the upper one taken only when strictly cheaper.
-  for (std::size_t i = 0; i <= n; ++i)
-    for (std::size_t j = 0; j <= m; ++j) {
-      if ((i == 0 && j == 0) || !allowed(i, j)) continue;
+  // The lower step is tried first and the upper one taken only when strictly cheaper. Row i's states
+  // start where row i − 1's first kept state is (none before it can be reached) and end where a state
+  // is neither reached from row i − 1 nor from its left.
+  std::size_t first = 0, last = 0;  // row i − 1's kept states
+  for (std::size_t i = 0; i <= n; ++i) {
+    std::size_t row_first = W, row_last = 0;
+    for (std::size_t j = i == 0 ? 0 : first; j <= m; ++j) {
+      if (i > 0 && j > last && !(j > 0 && cost[i * W + j - 1] < inf)) break;
+      if ((i == 0 && j == 0) || !allowed(i, j)) {
+        if (i == 0 && j == 0) row_first = row_last = 0;
+        continue;
+      }
       const double by_lower = i > 0 ? cost[(i - 1) * W + j] : inf, by_upper = j > 0 ? cost[i * W + j - 1] : inf;
       if (!(by_lower < inf) && !(by_upper < inf)) continue;
       const double d = distance(L[i], U[j]);
-      double& c = cost[i * W + j];
+      double c = inf;
+      char came = 0;
       if (by_lower < inf) {
         c = by_lower + d;
-        from[i * W + j] = 1;
+        came = 1;
       }
       if (by_upper < inf && by_upper + d < c) {
         c = by_upper + d;
-        from[i * W + j] = 2;
+        came = 2;
       }
+      if (pruned(c, i, j)) continue;
+      cost[i * W + j] = c;
+      from[i * W + j] = came;
+      row_first = std::min(row_first, j);
+      row_last = j;
     }
+    if (row_first == W) break;  // no state of this row is kept: (n, m) cannot be reached
+    first = row_first;
+    last = row_last;
+  }
   out.cost = cost[n * W + m];
   if (!(out.cost < std::numeric_limits<double>::infinity())) return out;
   std::size_t i = n, j = m;

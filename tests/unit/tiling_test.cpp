@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 
 #include "contour4d/core/contour.h"
 #include "contour4d/surface/capping.h"
@@ -61,6 +62,59 @@ TEST(Tiling, BandUsesEveryChainEdgeOnceAndFacesOutward) {
     const Vec3 a = pos[f[0]], b = pos[f[1]], c = pos[f[2]];
     const Vec3 n = c4d::cross(b - a, c - a), centre = (a + b + c) / 3.0;
     EXPECT_GT(n.x * centre.x + n.y * centre.y, 0.0);
+  }
+}
+
+// The band's dynamic programme leaves out states that cannot be on an optimal path (tiling.cpp): on
+// rows a row apart (the corridor is narrow), shifted sideways (an oblique stack), with very different
+// point counts, and on chains that interleave in height (no separation to prune with), the band's
+// total spanning-edge length equals the optimum of the full programme from the same start
+// (lower[0] and its nearest upper point), worked out here independently.
+TEST(Tiling, BandIsTheOptimumOfTheFullProgramme) {
+  struct Case {
+    int n, m;
+    double r_lo, r_up, dz, shift, wobble;
+  };
+  const Case cases[] = {{150, 130, 10.0, 10.5, 1.0, 0.0, 0.05}, {120, 120, 10.0, 9.0, 1.0, 3.0, 0.1},
+                        {40, 200, 6.0, 12.0, 5.0, 0.0, 0.0},   {90, 70, 8.0, 8.2, 0.3, 0.5, 0.8}};
+  for (const Case& c : cases) {
+    std::vector<Vec3> pos;
+    std::vector<std::uint32_t> lo, up;
+    for (int i = 0; i < c.n; ++i) {
+      const double t = 2.0 * M_PI * i / c.n;
+      lo.push_back(static_cast<std::uint32_t>(pos.size()));
+      pos.push_back({c.r_lo * std::cos(t), c.r_lo * std::sin(t), c.wobble * std::sin(7.0 * t)});
+    }
+    for (int j = 0; j < c.m; ++j) {
+      const double t = 0.1 + 2.0 * M_PI * j / c.m;
+      up.push_back(static_cast<std::uint32_t>(pos.size()));
+      pos.push_back({c.shift + c.r_up * std::cos(t), c.r_up * std::sin(t), c.dz + c.wobble * std::cos(5.0 * t)});
+    }
+    // The tiling's spanning edges (one per state of its path; the closing one is the starting one).
+    std::set<std::pair<std::uint32_t, std::uint32_t>> spanning;
+    for (const auto& f : c4d::tile_chains(lo, up, pos))
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = f[k], b = f[(k + 1) % 3];
+        if ((a < lo.size()) != (b < lo.size())) spanning.insert({std::min(a, b), std::max(a, b)});
+      }
+    double ours = 0.0;
+    for (const auto& [a, b] : spanning) ours += c4d::distance(pos[a], pos[b]);
+    // The full programme.
+    std::size_t j0 = 0;
+    for (std::size_t j = 1; j < up.size(); ++j)
+      if (c4d::distance(pos[lo[0]], pos[up[j]]) < c4d::distance(pos[lo[0]], pos[up[j0]])) j0 = j;
+    const std::size_t n = lo.size(), m = up.size();
+    auto d = [&](std::size_t i, std::size_t j) { return c4d::distance(pos[lo[i % n]], pos[up[(j0 + j) % m]]); };
+    std::vector<double> best((n + 1) * (m + 1), std::numeric_limits<double>::infinity());
+    best[0] = 0.0;
+    for (std::size_t i = 0; i <= n; ++i)
+      for (std::size_t j = 0; j <= m; ++j) {
+        if (i > 0) best[i * (m + 1) + j] = std::min(best[i * (m + 1) + j], best[(i - 1) * (m + 1) + j] + d(i, j));
+        if (j > 0) best[i * (m + 1) + j] = std::min(best[i * (m + 1) + j], best[i * (m + 1) + j - 1] + d(i, j));
+      }
+    const double optimum = best[n * (m + 1) + m];
+    EXPECT_EQ(spanning.size(), n + m);
+    EXPECT_NEAR(ours, optimum, 1e-9 * optimum) << c.n << " x " << c.m;
   }
 }
 
