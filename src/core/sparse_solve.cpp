@@ -3,6 +3,7 @@
 // morph's projection and the contour fit.
 #include "contour4d/core/sparse_solve.h"
 
+#include <algorithm>
 #include <array>
 #include <utility>
 #include <vector>
@@ -72,29 +73,84 @@ void substitute(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& d, 
 
 }  // namespace
 
-Eigen::MatrixXd solve_ldlt(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& solver, const Eigen::MatrixXd& b) {
+namespace {
+
+// x = P⁻¹ L⁻ᵀ D⁻¹ L⁻¹ P b (SimplicialLDLT::_solve_impl's order; P empty: none).
+template <class Perm>
+Eigen::MatrixXd permuted_solve(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& d, const Perm& P,
+                               const Perm& Pinv, const Eigen::MatrixXd& b) {
   using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const Eigen::Index n = b.rows(), nc = b.cols();
-  const auto& P = solver.permutationP();
   Rows y(n, nc);  // the columns side by side: one row per unknown
   if (P.size() > 0) {
     for (Eigen::Index i = 0; i < n; ++i) y.row(P.indices()(i)) = b.row(i);
   } else {
     y = b;
   }
-  const Eigen::SparseMatrix<double>& L = solver.matrixL().nestedExpression();
   if (nc == 3)
-    substitute<3>(L, solver.vectorD(), y.data(), n, nc);
+    substitute<3>(L, d, y.data(), n, nc);
   else
-    substitute<0>(L, solver.vectorD(), y.data(), n, nc);
+    substitute<0>(L, d, y.data(), n, nc);
   Eigen::MatrixXd x(n, nc);
   if (P.size() > 0) {
-    const auto& Pinv = solver.permutationPinv();
     for (Eigen::Index i = 0; i < n; ++i) x.row(Pinv.indices()(i)) = y.row(i);
   } else {
     x = y;
   }
   return x;
+}
+
+}  // namespace
+
+Eigen::MatrixXd solve_ldlt(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& solver, const Eigen::MatrixXd& b) {
+  return permuted_solve(solver.matrixL().nestedExpression(), solver.vectorD(), solver.permutationP(),
+                        solver.permutationPinv(), b);
+}
+
+bool SparseLdlt::compute(const Eigen::SparseMatrix<double>& a) {
+  using Sparse = Eigen::SparseMatrix<double>;
+  const Eigen::Index n = a.cols();
+  // The full symmetric pattern of the lower triangle, each column sorted: column j gets the rows k < j
+  // of the earlier columns that hold (j, k) (in increasing k), then its own entries i >= j (increasing).
+  // Eigen's ordering step builds the same pattern as C + Cᵀ, C the full symmetric copy.
+  std::vector<int> count(static_cast<std::size_t>(n) + 1, 0);
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Sparse::InnerIterator it(a, j); it; ++it)
+      if (it.row() >= j) {
+        ++count[static_cast<std::size_t>(j) + 1];
+        if (it.row() > j) ++count[static_cast<std::size_t>(it.row()) + 1];
+      }
+  for (Eigen::Index j = 0; j < n; ++j) count[static_cast<std::size_t>(j) + 1] += count[static_cast<std::size_t>(j)];
+  Sparse symm(n, n);
+  symm.resizeNonZeros(count.back());
+  std::copy(count.begin(), count.end(), symm.outerIndexPtr());
+  {
+    std::vector<int> fill(count.begin(), count.end() - 1);
+    int* inner = symm.innerIndexPtr();
+    double* value = symm.valuePtr();
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Sparse::InnerIterator it(a, j); it; ++it) {
+        const auto i = static_cast<int>(it.row());
+        if (i < j) continue;
+        value[fill[static_cast<std::size_t>(j)]] = 0.0;
+        inner[fill[static_cast<std::size_t>(j)]++] = i;
+        if (i > j) {
+          value[fill[static_cast<std::size_t>(i)]] = 0.0;
+          inner[fill[static_cast<std::size_t>(i)]++] = static_cast<int>(j);
+        }
+      }
+  }
+  // Eigen's AMDOrdering hands its minimum-degree routine the same pattern: the same permutation.
+  Eigen::internal::minimum_degree_ordering(symm, pinv_);
+  p_ = pinv_.inverse();
+  Sparse ap(n, n);
+  ap.selfadjointView<Eigen::Upper>() = a.selfadjointView<Eigen::Lower>().twistedBy(p_);
+  ldlt_.compute(ap);
+  return ldlt_.info() == Eigen::Success;
+}
+
+Eigen::MatrixXd SparseLdlt::solve(const Eigen::MatrixXd& b) const {
+  return permuted_solve(ldlt_.matrixL().nestedExpression(), ldlt_.vectorD(), p_, pinv_, b);
 }
 
 }  // namespace c4d

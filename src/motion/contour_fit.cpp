@@ -142,10 +142,10 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
       R(row, 1) = rhs[r].y;
       R(row, 2) = rhs[r].z;
     }
-    Eigen::SimplicialLDLT<Sparse> solver(M);
-    if (solver.info() != Eigen::Success) break;
-    const Eigen::MatrixXd D = solve_ldlt(solver, Eigen::MatrixXd(A.transpose() * R));
-    if (solver.info() != Eigen::Success || !D.allFinite()) break;
+    SparseLdlt solver;
+    if (!solver.compute(M)) break;
+    const Eigen::MatrixXd D = solver.solve(Eigen::MatrixXd(A.transpose() * R));
+    if (!D.allFinite()) break;
     for (std::size_t v = 0; v < nv; ++v)
       if (col[v] >= 0) {
         const auto r = static_cast<Eigen::Index>(col[v]);

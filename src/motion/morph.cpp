@@ -947,7 +947,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
   }
   // The system W + αLᵀL depends on the connectivity and on which vertices are pinned to contours:
   // it is factored again only when that set changes (topology events), else reused.
-  Eigen::SimplicialLDLT<SparseMatrix> solver;
+  SparseLdlt solver;
   std::vector<char> factored_for;
   BiharmonicStep biharmonic;  // MorphOptions::biharmonic
   std::vector<std::array<std::uint32_t, 2>> mesh_edges;
@@ -1071,8 +1071,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
         std::vector<Eigen::Triplet<double>> w;
         for (std::size_t i = 0; i < nv; ++i) w.emplace_back(static_cast<int>(i), static_cast<int>(i), pinned[i] ? pin_weight : 1.0);
         W.setFromTriplets(w.begin(), w.end());
-        solver.compute(SparseMatrix(W + opt.stiffness * LtL));
-        if (solver.info() != Eigen::Success)
+        if (!solver.compute(SparseMatrix(W + opt.stiffness * LtL)))
           throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
                             "failed to factor the deformation system");
         factored_for = pinned;
@@ -1082,7 +1081,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
         std::vector<Vec3> p = proj.project(x);
         for (std::size_t i = 0; i < nv; ++i)
           if (pinned[i]) p[i] = pin_weight * x[i];
-        x = from_matrix(solve_ldlt(solver, to_matrix(p) + ref_term));
+        x = from_matrix(solver.solve(to_matrix(p) + ref_term));
         for (const auto& [v, q] : pins) x[v] = q;
       }
       // The normals of the landing triangles serve the first relaxation round (each round's closing

@@ -111,11 +111,10 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
   const Sparse lft = lf.transpose();
   const Sparse a = lft * lf;
   const Eigen::MatrixXd rhs = lft * rhs0;
-  Eigen::SimplicialLDLT<Sparse> solver;
-  solver.compute(a);
-  if (solver.info() != Eigen::Success) return false;
-  const Eigen::MatrixXd x = solve_ldlt(solver, rhs);
-  if (solver.info() != Eigen::Success || !x.allFinite()) return false;
+  SparseLdlt solver;
+  if (!solver.compute(a)) return false;
+  const Eigen::MatrixXd x = solver.solve(rhs);
+  if (!x.allFinite()) return false;
   // A singular system (a free part without fixed vertex) shows as a tiny pivot.
   const auto d = solver.vectorD();
   if (d.size() > 0 && d.minCoeff() <= 1e-12 * std::max(1.0, d.maxCoeff())) return false;

@@ -1,4 +1,5 @@
-// solve_ldlt (core/sparse_solve.h) against Eigen's own SimplicialLDLT::solve: bit-identical results.
+// solve_ldlt and SparseLdlt (core/sparse_solve.h) against Eigen's own SimplicialLDLT: bit-identical
+// factors and results.
 #include <cstring>
 #include <random>
 #include <vector>
@@ -69,6 +70,58 @@ TEST(SparseSolve, HandlesTheIdentityAndAnEmptyRightHandSide) {
   const Eigen::MatrixXd b = Eigen::MatrixXd::Random(5, 3);
   EXPECT_TRUE(same_bits(solve_ldlt(solver, b), solver.solve(b)));
   EXPECT_EQ(solve_ldlt(solver, Eigen::MatrixXd(5, 0)).cols(), 0);
+}
+
+bool same_bits(const Sparse& a, const Sparse& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  for (Eigen::Index j = 0; j < a.outerSize(); ++j) {
+    Sparse::InnerIterator x(a, j), y(b, j);
+    for (; x && y; ++x, ++y)
+      if (x.row() != y.row() || std::memcmp(&x.valueRef(), &y.valueRef(), sizeof(double)) != 0) return false;
+    if (x || y) return false;
+  }
+  return true;
+}
+
+// SparseLdlt orders from the lower triangle's pattern itself: the same permutation, factor and
+// solutions as SimplicialLDLT on grids of several sizes and weights (the fairing's and the morph's
+// systems), also when the upper triangle holds other values (it is never read) or is not stored.
+TEST(SparseSolve, SparseLdltIsSimplicialLdltBitForBit) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> nd(0.0, 10.0);
+  for (const auto& [g, w] : {std::pair{7, 1.0}, std::pair{30, 0.01}, std::pair{45, 100.0}}) {
+    const Sparse A = grid_system(g, w, rng);
+    Sparse lower = A.triangularView<Eigen::Lower>();
+    Sparse skewed = A;  // the upper triangle scaled: neither solver reads it
+    for (Eigen::Index j = 0; j < skewed.outerSize(); ++j)
+      for (Sparse::InnerIterator it(skewed, j); it; ++it)
+        if (it.row() < j) it.valueRef() *= 3.0;
+    const Eigen::SimplicialLDLT<Sparse> eigen(A);
+    ASSERT_EQ(eigen.info(), Eigen::Success);
+    Eigen::MatrixXd b(A.rows(), 3);
+    for (Eigen::Index i = 0; i < b.size(); ++i) b.data()[i] = nd(rng);
+    for (const Sparse* input : std::vector<const Sparse*>{&A, &lower, &skewed}) {
+      SparseLdlt ours;
+      ASSERT_TRUE(ours.compute(*input));
+      EXPECT_TRUE(same_bits(Eigen::MatrixXd(ours.vectorD()), Eigen::MatrixXd(eigen.vectorD()))) << g;
+      EXPECT_TRUE(same_bits(ours.solve(b), eigen.solve(b))) << g;
+    }
+    // The factor itself: SimplicialLDLT with the natural ordering on the permuted matrix (what SparseLdlt
+    // runs) has the factor of SimplicialLDLT with AMD.
+    Sparse ap(A.rows(), A.cols());
+    ap.selfadjointView<Eigen::Upper>() = A.selfadjointView<Eigen::Lower>().twistedBy(eigen.permutationP());
+    const Eigen::SimplicialLDLT<Sparse, Eigen::Upper, Eigen::NaturalOrdering<int>> natural(ap);
+    EXPECT_TRUE(same_bits(Sparse(natural.matrixL()), Sparse(eigen.matrixL()))) << g;
+  }
+  // An indefinite matrix fails in both.
+  Sparse bad(2, 2);
+  bad.insert(0, 0) = 1.0;
+  bad.insert(1, 0) = 2.0;
+  bad.insert(0, 1) = 2.0;
+  bad.insert(1, 1) = 4.0;
+  SparseLdlt ours;
+  const Eigen::SimplicialLDLT<Sparse> eigen(bad);
+  EXPECT_EQ(ours.compute(bad), eigen.info() == Eigen::Success);
 }
 
 }  // namespace
