@@ -15,6 +15,7 @@
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Handle_hash_function.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
@@ -22,7 +23,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <set>
+#include <unordered_set>
 
 namespace c4d {
 namespace {
@@ -56,7 +57,7 @@ void insert_loops(CDT& cdt, const std::vector<std::vector<Vec2>>& loops) {
 void mark_domain(CDT& cdt) {
   for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->set_in_domain(false);
   std::deque<std::pair<CDT::Face_handle, int>> border{{cdt.infinite_face(), 0}};
-  std::set<CDT::Face_handle> seen;
+  std::unordered_set<CDT::Face_handle, CGAL::Handle_hash_function> seen;  // membership only: any order
   while (!border.empty()) {
     auto [start, level] = border.front();
     border.pop_front();
@@ -176,7 +177,7 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
     insert_loops(cdt, loops);
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) v->info() = 0;
     mark_domain(cdt);
-    std::set<CDT::Vertex_handle> original;
+    std::unordered_set<CDT::Vertex_handle, CGAL::Handle_hash_function> original;  // membership only
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) original.insert(v);
     if (options.edge > 0) CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125, options.edge), true);
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
