@@ -71,10 +71,6 @@ void substitute(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& d, 
   }
 }
 
-}  // namespace
-
-namespace {
-
 // x = P⁻¹ L⁻ᵀ D⁻¹ L⁻¹ P b (SimplicialLDLT::_solve_impl's order; P empty: none).
 template <class Perm>
 Eigen::MatrixXd permuted_solve(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& d, const Perm& P,

@@ -314,12 +314,13 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
       if (first.size() > max_pairs_listed) first.erase(std::prev(first.end()));
     }
   };
-  if (only != nullptr && some.empty()) {
-  } else if (grid_overlapping_pairs(all, only, callback)) {
-  } else if (only == nullptr) {
-    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), callback, std::ptrdiff_t(2000));
-  } else {
-    CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), callback);
+  // The grid, or CGAL's box search where the grid's cells are crowded.
+  const bool nothing_flagged = only != nullptr && some.empty();
+  if (!nothing_flagged && !grid_overlapping_pairs(all, only, callback)) {
+    if (only == nullptr)
+      CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), callback, std::ptrdiff_t(2000));
+    else
+      CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), callback);
   }
   if (pairs != nullptr) pairs->assign(first.begin(), first.end());
   return count;

@@ -8,14 +8,86 @@
 #include "contour4d/surface/fairing.h"
 
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "contour4d/core/sparse_solve.h"
 
 namespace c4d {
+
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+
+// The normal equations LfᵀLf x = Lfᵀ(−c) of the rows `trip` (Lf, rows × nf, listed row by row) and
+// their constants: the lower triangle of LfᵀLf (all the factorisation reads) and the right-hand side,
+// each entry summed in Eigen's order for `Lfᵀ * Lf` and `Lfᵀ * rhs` (rows of Lf in increasing order,
+// each term Lf(k, i)·Lf(k, j) or Lf(k, i)·rhs(k)): the same values to the bit, without forming Lf, its
+// transpose and the full product. The matrix goes into `a` (nf × nf), the right-hand side into `rhs`.
+void normal_equations(const std::vector<Eigen::Triplet<double>>& trip, const std::vector<std::array<double, 3>>& constant,
+                      int rows, int nf, Sparse& a, Eigen::MatrixXd& rhs) {
+  std::vector<std::size_t> row_start(static_cast<std::size_t>(rows) + 1, 0);
+  for (const auto& e : trip) ++row_start[static_cast<std::size_t>(e.row()) + 1];
+  for (std::size_t r = 0; r < static_cast<std::size_t>(rows); ++r) row_start[r + 1] += row_start[r];
+  std::vector<std::size_t> col_start(static_cast<std::size_t>(nf) + 1, 0);
+  for (const auto& e : trip) ++col_start[static_cast<std::size_t>(e.col()) + 1];
+  for (std::size_t c = 0; c < static_cast<std::size_t>(nf); ++c) col_start[c + 1] += col_start[c];
+  std::vector<std::size_t> col_items(trip.size());  // per column, its entries (indices into trip) by row
+  {
+    std::vector<std::size_t> fill(col_start.begin(), col_start.end() - 1);
+    for (std::size_t k = 0; k < trip.size(); ++k) col_items[fill[static_cast<std::size_t>(trip[k].col())]++] = k;
+  }
+  a.resize(nf, nf);
+  {
+    std::vector<int> outer(static_cast<std::size_t>(nf) + 1, 0), inner, touched;
+    std::vector<double> values, sum(static_cast<std::size_t>(nf), 0.0);
+    std::vector<char> seen(static_cast<std::size_t>(nf), 0);
+    inner.reserve(12 * static_cast<std::size_t>(nf));
+    values.reserve(12 * static_cast<std::size_t>(nf));
+    for (int j = 0; j < nf; ++j) {
+      touched.clear();
+      for (std::size_t c = col_start[static_cast<std::size_t>(j)]; c < col_start[static_cast<std::size_t>(j) + 1]; ++c) {
+        const auto& ej = trip[col_items[c]];
+        const double y = ej.value();
+        for (std::size_t e = row_start[static_cast<std::size_t>(ej.row())]; e < row_start[static_cast<std::size_t>(ej.row()) + 1]; ++e) {
+          const int i = trip[e].col();
+          if (i < j) continue;
+          const auto ui = static_cast<std::size_t>(i);
+          if (!seen[ui]) {
+            seen[ui] = 1;
+            sum[ui] = trip[e].value() * y;
+            touched.push_back(i);
+          } else {
+            sum[ui] += trip[e].value() * y;
+          }
+        }
+      }
+      std::sort(touched.begin(), touched.end());
+      for (int i : touched) {
+        inner.push_back(i);
+        values.push_back(sum[static_cast<std::size_t>(i)]);
+        seen[static_cast<std::size_t>(i)] = 0;
+      }
+      outer[static_cast<std::size_t>(j) + 1] = static_cast<int>(inner.size());
+    }
+    a.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+    std::copy(outer.begin(), outer.end(), a.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), a.innerIndexPtr());
+    std::copy(values.begin(), values.end(), a.valuePtr());
+  }
+  rhs = Eigen::MatrixXd::Zero(nf, 3);
+  for (Eigen::Index k = 0; k < 3; ++k)
+    for (int r = 0; r < rows; ++r) {
+      const double b = -constant[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)];
+      for (std::size_t e = row_start[static_cast<std::size_t>(r)]; e < row_start[static_cast<std::size_t>(r) + 1]; ++e)
+        rhs(trip[e].col(), k) += trip[e].value() * b;
+    }
+}
+
+}  // namespace
 
 bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const std::vector<char>& keep_shape,
                      const FairingOptions& options) {
@@ -61,7 +133,6 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
 
   // Rows of the energy: for each used, non-boundary vertex v, sqrt(w_v) (L(x)_v − b_v), split into
   // the part on the unknowns (matrix Lf) and a constant (fixed neighbours and b_v).
-  using Sparse = Eigen::SparseMatrix<double>;
   std::vector<Eigen::Triplet<double>> trip;
   std::vector<std::array<double, 3>> constant;
   trip.reserve(8 * nv);
@@ -103,66 +174,9 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
     constant.push_back(c);
     ++rows;
   }
-  // The normal equations LfᵀLf x = Lfᵀ(−c): the lower triangle of LfᵀLf (all the factorisation reads)
-  // and the right-hand side, each entry summed in Eigen's order for `Lfᵀ * Lf` and `Lfᵀ * rhs` (rows
-  // of Lf in increasing order, each term Lf(k, i)·Lf(k, j) or Lf(k, i)·rhs(k)): the same values to the
-  // bit, without forming Lf, its transpose and the full product.
-  std::vector<std::size_t> row_start(static_cast<std::size_t>(rows) + 1, 0);
-  for (const auto& e : trip) ++row_start[static_cast<std::size_t>(e.row()) + 1];
-  for (std::size_t r = 0; r < static_cast<std::size_t>(rows); ++r) row_start[r + 1] += row_start[r];
-  std::vector<std::size_t> col_start(static_cast<std::size_t>(nf) + 1, 0);
-  for (const auto& e : trip) ++col_start[static_cast<std::size_t>(e.col()) + 1];
-  for (std::size_t c = 0; c < static_cast<std::size_t>(nf); ++c) col_start[c + 1] += col_start[c];
-  std::vector<std::size_t> col_items(trip.size());  // per column, its entries (indices into trip) by row
-  {
-    std::vector<std::size_t> fill(col_start.begin(), col_start.end() - 1);
-    for (std::size_t k = 0; k < trip.size(); ++k) col_items[fill[static_cast<std::size_t>(trip[k].col())]++] = k;
-  }
-  Sparse a(nf, nf);
-  {
-    std::vector<int> outer(static_cast<std::size_t>(nf) + 1, 0), inner, touched;
-    std::vector<double> values, sum(static_cast<std::size_t>(nf), 0.0);
-    std::vector<char> seen(static_cast<std::size_t>(nf), 0);
-    inner.reserve(12 * static_cast<std::size_t>(nf));
-    values.reserve(12 * static_cast<std::size_t>(nf));
-    for (int j = 0; j < nf; ++j) {
-      touched.clear();
-      for (std::size_t c = col_start[static_cast<std::size_t>(j)]; c < col_start[static_cast<std::size_t>(j) + 1]; ++c) {
-        const auto& ej = trip[col_items[c]];
-        const double y = ej.value();
-        for (std::size_t e = row_start[static_cast<std::size_t>(ej.row())]; e < row_start[static_cast<std::size_t>(ej.row()) + 1]; ++e) {
-          const int i = trip[e].col();
-          if (i < j) continue;
-          const auto ui = static_cast<std::size_t>(i);
-          if (!seen[ui]) {
-            seen[ui] = 1;
-            sum[ui] = trip[e].value() * y;
-            touched.push_back(i);
-          } else {
-            sum[ui] += trip[e].value() * y;
-          }
-        }
-      }
-      std::sort(touched.begin(), touched.end());
-      for (int i : touched) {
-        inner.push_back(i);
-        values.push_back(sum[static_cast<std::size_t>(i)]);
-        seen[static_cast<std::size_t>(i)] = 0;
-      }
-      outer[static_cast<std::size_t>(j) + 1] = static_cast<int>(inner.size());
-    }
-    a.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
-    std::copy(outer.begin(), outer.end(), a.outerIndexPtr());
-    std::copy(inner.begin(), inner.end(), a.innerIndexPtr());
-    std::copy(values.begin(), values.end(), a.valuePtr());
-  }
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 3);
-  for (Eigen::Index k = 0; k < 3; ++k)
-    for (int r = 0; r < rows; ++r) {
-      const double b = -constant[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)];
-      for (std::size_t e = row_start[static_cast<std::size_t>(r)]; e < row_start[static_cast<std::size_t>(r) + 1]; ++e)
-        rhs(trip[e].col(), k) += trip[e].value() * b;
-    }
+  Sparse a;
+  Eigen::MatrixXd rhs;
+  normal_equations(trip, constant, rows, nf, a, rhs);
   SparseLdlt solver;
   if (!solver.compute(a)) return false;
   const Eigen::MatrixXd x = solver.solve(rhs);

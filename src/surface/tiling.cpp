@@ -99,10 +99,11 @@ BandPath band_path_from(const std::vector<std::uint32_t>& lower, const std::vect
     std::size_t row_first = W, row_last = 0;
     for (std::size_t j = i == 0 ? 0 : first; j <= m; ++j) {
       if (i > 0 && j > last && !(j > 0 && cost[i * W + j - 1] < inf)) break;
-      if ((i == 0 && j == 0) || !allowed(i, j)) {
-        if (i == 0 && j == 0) row_first = row_last = 0;
+      if (i == 0 && j == 0) {  // the start, cost 0
+        row_first = row_last = 0;
         continue;
       }
+      if (!allowed(i, j)) continue;
       const double by_lower = i > 0 ? cost[(i - 1) * W + j] : inf, by_upper = j > 0 ? cost[i * W + j - 1] : inf;
       if (!(by_lower < inf) && !(by_upper < inf)) continue;
       const double d = distance(L[i], U[j]);

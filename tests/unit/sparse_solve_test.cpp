@@ -113,7 +113,7 @@ TEST(SparseSolve, SparseLdltIsSimplicialLdltBitForBit) {
     const Eigen::SimplicialLDLT<Sparse, Eigen::Upper, Eigen::NaturalOrdering<int>> natural(ap);
     EXPECT_TRUE(same_bits(Sparse(natural.matrixL()), Sparse(eigen.matrixL()))) << g;
   }
-  // An indefinite matrix fails in both.
+  // A singular matrix (a zero pivot) fails in both.
   Sparse bad(2, 2);
   bad.insert(0, 0) = 1.0;
   bad.insert(1, 0) = 2.0;
