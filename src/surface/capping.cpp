@@ -161,6 +161,55 @@ class BoundaryDistance {
   int nx_ = 1, ny_ = 1;
 };
 
+// CGAL's Delaunay_mesh_size_criteria_2 (the same shape test, bound 0.125) with a size bound that grows
+// with the distance of a triangle's centroid from the loops: `edge` within `near` edges of them,
+// `far` × edge beyond `ramp` edges, linear in between. The fairing solves for every cap point and its
+// cost grows faster than the point count on a 2D region (a torus cap: 6 000 points at a uniform bound,
+// two thirds of the frame's factorisation), while only the rings next to the contour shape the surface
+// across it; the final remeshing brings the interior back to `edge`.
+class GradedCriteria : public Criteria {
+ public:
+  GradedCriteria(double edge, double far, double near, double ramp, const BoundaryDistance& distance)
+      : Criteria(0.125, edge), far_(far), near_(near), ramp_(ramp), distance_(&distance) {}
+
+  class Is_bad : public Criteria::Is_bad {
+   public:
+    Is_bad(double aspect, double edge, const Geom_traits& geom, const GradedCriteria* c)
+        : Criteria::Is_bad(aspect, edge, geom), aspect_(aspect), edge_(edge), c_(c) {}
+    using Criteria::Is_bad::operator();
+    CGAL::Mesh_2::Face_badness operator()(const CDT::Face_handle& fh, Quality& q) const {
+      const Point& pa = fh->vertex(0)->point();
+      const Point& pb = fh->vertex(1)->point();
+      const Point& pc = fh->vertex(2)->point();
+      std::array<double, 3> sq{CGAL::to_double(CGAL::squared_distance(pb, pc)), CGAL::to_double(CGAL::squared_distance(pc, pa)),
+                               CGAL::to_double(CGAL::squared_distance(pa, pb))};
+      std::sort(sq.begin(), sq.end());
+      const double l1 = sq[2], l2 = sq[1];  // the two longest squared edges
+      const Vec2 g{(pa.x() + pb.x() + pc.x()) / 3.0, (pa.y() + pb.y() + pc.y()) / 3.0};
+      const double d = (*c_->distance_)(g, c_->ramp_ * edge_);
+      const double t = std::clamp((d - c_->near_ * edge_) / std::max((c_->ramp_ - c_->near_) * edge_, 1e-12), 0.0, 1.0);
+      const double bound = edge_ * (1.0 + (c_->far_ - 1.0) * t);
+      q.second = l1 / (bound * bound);
+      if (q.size() > 1) {
+        q.first = 1;
+        return CGAL::Mesh_2::IMPERATIVELY_BAD;
+      }
+      const double area = 2 * CGAL::to_double(CGAL::area(pa, pb, pc));
+      q.first = (area * area) / (l1 * l2);
+      return q.sine() < aspect_ ? CGAL::Mesh_2::BAD : CGAL::Mesh_2::NOT_BAD;
+    }
+
+   private:
+    double aspect_, edge_;
+    const GradedCriteria* c_;
+  };
+  Is_bad is_bad_object() const { return Is_bad(this->bound(), size_bound(), this->traits, this); }
+
+ private:
+  double far_, near_, ramp_;
+  const BoundaryDistance* distance_;
+};
+
 }  // namespace
 
 CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle style, const CapOptions& options) {
@@ -179,7 +228,9 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
     mark_domain(cdt);
     std::unordered_set<CDT::Vertex_handle, CGAL::Handle_hash_function> original;  // membership only
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) original.insert(v);
-    if (options.edge > 0) CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125, options.edge), true);
+    if (options.edge > 0)
+      CGAL::refine_Delaunay_mesh_2(
+          cdt, GradedCriteria(options.edge, options.far_scale, options.near_edges, options.ramp_edges, boundary_distance), true);
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
       if (original.count(v) || cdt.are_there_incident_constraints(v)) continue;
       const Vec2 p{v->point().x(), v->point().y()};

@@ -796,13 +796,21 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         CapOptions cop;
         cop.edge = opt.edge;
         cop.height = std::clamp(opt.cap_height, 0.0, 0.5) * spacing(s, top);
+        bool lone = true;
+        for (int g : group) lone = lone && !nodes[g].linked_up && !nodes[g].linked_down;
+        // Rings (a contour with holes) keep their faired dome: its height is bound by the ring's width,
+        // and a straight extrapolation of the ring's area overshoots (torus: +2.4 % instead of −0.8 %).
+        // Other Rounded caps are filled to the volume the sections' trend extrapolates (fill_cap).
+        const bool fillable = opt.caps == CapStyle::Rounded && !lone && opt.cap_max_fill > 0 && group.size() == 1 && !lone_hole;
+        // A coarser interior far from the contour: fewer unknowns for the fairing (CapOptions::far_scale).
+        // Only on filled caps, whose volume the fill sets: a faired dome over a graded mesh comes out
+        // lower (the umbrella Laplacian weighs a coarse region's curvature more), the torus's rings by 3 %.
+        if (!fillable) cop.far_scale = 1.0;
         const CapMesh cap = triangulate_cap(loops, opt.caps, cop);
         for (double hk : cap.height) {
           lowest = std::min(lowest, slices[s].plane.origin.z - (top ? 0.0 : hk));
           highest = std::max(highest, slices[s].plane.origin.z + (top ? hk : 0.0));
         }
-        bool lone = true;
-        for (int g : group) lone = lone && !nodes[g].linked_up && !nodes[g].linked_down;
         std::vector<std::uint32_t> id;
         for (int g : group) id.insert(id.end(), nodes[g].chain.begin(), nodes[g].chain.end());
         const double dir = top ? 1.0 : -1.0;
@@ -820,9 +828,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
           b.triangles.push_back(flip ? Triangle{id[t[0]], id[t[2]], id[t[1]]} : Triangle{id[t[0]], id[t[1]], id[t[2]]});
           fill.triangles.push_back(b.triangles.back());
         }
-        // Rings (a contour with holes) keep their faired dome: its height is bound by the ring's width,
-        // and a straight extrapolation of the ring's area overshoots (torus: +2.4 % instead of −0.8 %).
-        if (opt.caps == CapStyle::Rounded && !lone && opt.cap_max_fill > 0 && group.size() == 1 && !lone_hole) {
+        if (fillable) {
           const double area = node_area(nodes[n]), neighbour = neighbour_share(nodes, pair_links, n, s, top);
           // The dome's own height: cap_height, or less on a narrow region (triangulate_cap).
           const double height = *std::max_element(cap.height.begin(), cap.height.end());

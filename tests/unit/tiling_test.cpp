@@ -241,6 +241,43 @@ TEST(Capping, DomeHeightsFollowTheExactDistanceToTheLoops) {
   }
 }
 
+// CapOptions::far_scale: next to the loops the interior points are as dense as with a uniform bound
+// (the fairing's smoothness across the contour depends on them); far from them, fewer.
+TEST(Capping, InteriorCoarsensAwayFromTheLoops) {
+  const auto loop = c4d::canonical_polygon(ellipse(25, 20, 140), true);
+  c4d::CapOptions uniform{1.0, 2.0};
+  uniform.far_scale = 1.0;
+  const c4d::CapOptions graded{1.0, 2.0};  // the defaults: near 2 edges, ramp to 5, far 3
+  ASSERT_EQ(graded.near_edges, 2.0);
+  ASSERT_EQ(graded.ramp_edges, 5.0);
+  ASSERT_EQ(graded.far_scale, 3.0);
+  auto count = [&](const c4d::CapMesh& cap, double lo, double hi) {
+    std::size_t n = 0;
+    for (std::size_t i = loop.size(); i < cap.points.size(); ++i) {
+      double d = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        d = std::min(d, c4d::segment_distance(cap.points[i], loop[k], loop[(k + 1) % loop.size()]));
+      EXPECT_GE(d, 0.4) << "interior point " << i << " within 0.4 edge of the loop";
+      if (d >= lo && d < hi) ++n;
+    }
+    return n;
+  };
+  for (c4d::CapStyle style : {c4d::CapStyle::Flat, c4d::CapStyle::Rounded}) {
+    const auto u = c4d::triangulate_cap({loop}, style, uniform), g = c4d::triangulate_cap({loop}, style, graded);
+    const double near_u = static_cast<double>(count(u, 0.0, 1.5)), near_g = static_cast<double>(count(g, 0.0, 1.5));
+    EXPECT_GT(near_g, 0.85 * near_u);
+    EXPECT_LT(near_g, 1.15 * near_u);
+    const double far_u = static_cast<double>(count(u, 6.0, 1e9)), far_g = static_cast<double>(count(g, 6.0, 1e9));
+    EXPECT_GT(far_u, 500.0);
+    EXPECT_LT(far_g, 0.3 * far_u);  // about (1/3)² of the points where the bound is 3 edges
+    EXPECT_LT(g.points.size(), u.points.size() / 2);
+    // Still a triangulation of the whole region.
+    double area = 0.0;
+    for (const auto& t : g.triangles) area += 0.5 * c4d::cross(g.points[t[1]] - g.points[t[0]], g.points[t[2]] - g.points[t[0]]);
+    EXPECT_NEAR(area, c4d::signed_area(loop), 1e-6);
+  }
+}
+
 TEST(Caps, ExtrapolatedVolumeFollowsTheLastTwoSections) {
   // A tube cut across: the full prism, up to max_fill.
   EXPECT_DOUBLE_EQ(c4d::extrapolated_cap_volume(100, 100, 5, 2.5, 1.0), 250.0);

@@ -22,6 +22,11 @@ enum class CapStyle {
 struct CapOptions {
   double edge = 1.0;     //!< target edge length of the cap's interior triangles (mm)
   double height = 2.5;   //!< dome height (mm), Rounded only; clipped to the region's half width
+  double near_edges = 2.0;  //!< interior triangles within this many edges of the loops are at most `edge` long
+  double ramp_edges = 5.0;  //!< beyond this many edges from the loops the bound is far_scale × edge (linear in between)
+  double far_scale = 3.0;   //!< size bound far from the loops, in edges (1: uniform `edge`). A coarser interior has fewer
+                            //!< unknowns for the fairing (biv-me frame 0: 15 % less CPU); the final remeshing restores
+                            //!< `edge`. reconstruct_frame uses 1 on rings, whose faired dome sets their volume
 };
 
 //! A planar cap in plane coordinates plus a height per point.
@@ -32,8 +37,9 @@ struct CapMesh {
 };
 
 //! Triangulates the region bounded by `loops` (an outer loop and its holes; even–odd nesting) with
-//! a constrained Delaunay triangulation plus interior points about `edge` apart (CGAL's 2D
-//! Delaunay mesher), never splitting a loop edge, and lifts the interior for CapStyle::Rounded.
+//! a constrained Delaunay triangulation plus interior points (CGAL's 2D Delaunay mesher: about `edge`
+//! apart next to the loops, up to far_scale × edge apart far from them), never splitting a loop edge,
+//! and lifts the interior for CapStyle::Rounded.
 //! Loop point k of loop l has index (size of loops 0..l-1) + k in the result.
 CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle style, const CapOptions& options = {});
 
