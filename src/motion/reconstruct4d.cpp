@@ -39,6 +39,8 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
       so.rows = false;
       so.remesher = options.frame0_remesher;
     }
+    // The carried mesh starts at the angle the morph keeps in every later frame (its own repair's target).
+    if (f == 0) so.angle_repair.target_deg = options.morph.angle_repair.target_deg;
     if (f > 0 && options.fast_targets) {
       // Only the geometry of later frames is used (the morph projects onto it): no self-intersection test,
       // and by default no small-angle repair (it was 40 % of these surfaces' time; the relaxation takes

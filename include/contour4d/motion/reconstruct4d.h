@@ -15,7 +15,9 @@ namespace c4d {
 
 //! Options of the 4D reconstruction.
 struct Reconstruct4DOptions {
-  SurfaceOptions surface;  //!< the one-frame surface (frame 0, and each frame's target for RbfProject)
+  SurfaceOptions surface;  //!< the one-frame surface (frame 0, and each frame's target for RbfProject); frame 0's
+                           //!< small-angle repair aims at morph.angle_repair.target_deg (32°) instead of
+                           //!< surface.angle_repair's (28°): the carried mesh starts where the morph keeps it
   MorphOptions morph;      //!< the deformation through the frames
   bool fast_targets = true;   //!< frames after 0 only give geometry (frame 0's triangles are carried):
                               //!< build their surfaces with interpolated rows (SurfaceOptions::rows) and
