@@ -185,10 +185,13 @@ class GradedCriteria : public Criteria {
                                CGAL::to_double(CGAL::squared_distance(pa, pb))};
       std::sort(sq.begin(), sq.end());
       const double l1 = sq[2], l2 = sq[1];  // the two longest squared edges
-      const Vec2 g{(pa.x() + pb.x() + pc.x()) / 3.0, (pa.y() + pb.y() + pc.y()) / 3.0};
-      const double d = (*c_->distance_)(g, c_->ramp_ * edge_);
-      const double t = std::clamp((d - c_->near_ * edge_) / std::max((c_->ramp_ - c_->near_) * edge_, 1e-12), 0.0, 1.0);
-      const double bound = edge_ * (1.0 + (c_->far_ - 1.0) * t);
+      double bound = edge_;
+      if (c_->far_ != 1.0) {  // (a uniform bound needs no distance)
+        const Vec2 g{(pa.x() + pb.x() + pc.x()) / 3.0, (pa.y() + pb.y() + pc.y()) / 3.0};
+        const double d = (*c_->distance_)(g, c_->ramp_ * edge_);
+        const double t = std::clamp((d - c_->near_ * edge_) / std::max((c_->ramp_ - c_->near_) * edge_, 1e-12), 0.0, 1.0);
+        bound = edge_ * (1.0 + (c_->far_ - 1.0) * t);
+      }
       q.second = l1 / (bound * bound);
       if (q.size() > 1) {
         q.first = 1;
