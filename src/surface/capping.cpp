@@ -231,9 +231,11 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
     mark_domain(cdt);
     std::unordered_set<CDT::Vertex_handle, CGAL::Handle_hash_function> original;  // membership only
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) original.insert(v);
+    // A bound below `edge` far from the loops (or none at all: 0 or NaN would refine forever) counts as uniform.
+    const double far = std::isfinite(options.far_scale) && options.far_scale > 1.0 ? options.far_scale : 1.0;
     if (options.edge > 0)
-      CGAL::refine_Delaunay_mesh_2(
-          cdt, GradedCriteria(options.edge, options.far_scale, options.near_edges, options.ramp_edges, boundary_distance), true);
+      CGAL::refine_Delaunay_mesh_2(cdt, GradedCriteria(options.edge, far, options.near_edges, options.ramp_edges, boundary_distance),
+                                   true);
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
       if (original.count(v) || cdt.are_there_incident_constraints(v)) continue;
       const Vec2 p{v->point().x(), v->point().y()};

@@ -275,6 +275,13 @@ TEST(Capping, InteriorCoarsensAwayFromTheLoops) {
     double area = 0.0;
     for (const auto& t : g.triangles) area += 0.5 * c4d::cross(g.points[t[1]] - g.points[t[0]], g.points[t[2]] - g.points[t[0]]);
     EXPECT_NEAR(area, c4d::signed_area(loop), 1e-6);
+    // A far bound of 0, below 1 or NaN is the uniform one (0 or NaN as a bound would never stop refining).
+    for (double far : {0.0, 0.5, std::numeric_limits<double>::quiet_NaN()}) {
+      c4d::CapOptions o{1.0, 2.0};
+      o.far_scale = far;
+      const auto w = c4d::triangulate_cap({loop}, style, o);
+      EXPECT_EQ(w.points, u.points) << "far_scale " << far;
+    }
   }
 }
 
