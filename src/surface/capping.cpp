@@ -164,9 +164,9 @@ class BoundaryDistance {
 // CGAL's Delaunay_mesh_size_criteria_2 (the same shape test, bound 0.125) with a size bound that grows
 // with the distance of a triangle's centroid from the loops: `edge` within `near` edges of them,
 // `far` × edge beyond `ramp` edges, linear in between. The fairing solves for every cap point and its
-// cost grows faster than the point count on a 2D region (a torus cap: 6 000 points at a uniform bound,
-// two thirds of the frame's factorisation), while only the rings next to the contour shape the surface
-// across it; the final remeshing brings the interior back to `edge`.
+// cost grows faster than the point count on a 2D region (biv-me's basal cap: 6 800 points at a uniform
+// bound, more than half of the frame's factorisation flops), while only the rings next to the contour
+// shape the surface across it; the final remeshing brings the interior back to `edge`.
 class GradedCriteria : public Criteria {
  public:
   GradedCriteria(double edge, double far, double near, double ramp, const BoundaryDistance& distance)

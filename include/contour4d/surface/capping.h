@@ -24,9 +24,10 @@ struct CapOptions {
   double height = 2.5;   //!< dome height (mm), Rounded only; clipped to the region's half width
   double near_edges = 2.0;  //!< interior triangles within this many edges of the loops are at most `edge` long
   double ramp_edges = 5.0;  //!< beyond this many edges from the loops the bound is far_scale × edge (linear in between)
-  double far_scale = 3.0;   //!< size bound far from the loops, in edges (≤ 1 or not finite: uniform `edge`). A coarser interior has fewer
-                            //!< unknowns for the fairing (biv-me frame 0: 15 % less CPU); the final remeshing restores
-                            //!< `edge`. reconstruct_frame uses 1 on rings, whose faired dome sets their volume
+  double far_scale = 3.0;   //!< size bound far from the loops, in edges (≤ 1 or not finite: uniform `edge`). A
+                            //!< coarser interior has fewer unknowns for the fairing (biv-me frame 0: 15 % less CPU);
+                            //!< the final remeshing restores `edge`. reconstruct_frame uses 1 on rings, whose faired
+                            //!< dome sets their volume
 };
 
 //! A planar cap in plane coordinates plus a height per point.
