@@ -185,13 +185,10 @@ class GradedCriteria : public Criteria {
                                CGAL::to_double(CGAL::squared_distance(pa, pb))};
       std::sort(sq.begin(), sq.end());
       const double l1 = sq[2], l2 = sq[1];  // the two longest squared edges
-      double bound = edge_;
-      if (c_->far_ != 1.0) {  // (a uniform bound needs no distance)
-        const Vec2 g{(pa.x() + pb.x() + pc.x()) / 3.0, (pa.y() + pb.y() + pc.y()) / 3.0};
-        const double d = (*c_->distance_)(g, c_->ramp_ * edge_);
-        const double t = std::clamp((d - c_->near_ * edge_) / std::max((c_->ramp_ - c_->near_) * edge_, 1e-12), 0.0, 1.0);
-        bound = edge_ * (1.0 + (c_->far_ - 1.0) * t);
-      }
+      const Vec2 g{(pa.x() + pb.x() + pc.x()) / 3.0, (pa.y() + pb.y() + pc.y()) / 3.0};
+      const double d = (*c_->distance_)(g, c_->ramp_ * edge_);
+      const double t = std::clamp((d - c_->near_ * edge_) / std::max((c_->ramp_ - c_->near_) * edge_, 1e-12), 0.0, 1.0);
+      const double bound = edge_ * (1.0 + (c_->far_ - 1.0) * t);
       q.second = l1 / (bound * bound);
       if (q.size() > 1) {
         q.first = 1;
@@ -231,11 +228,14 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
     mark_domain(cdt);
     std::unordered_set<CDT::Vertex_handle, CGAL::Handle_hash_function> original;  // membership only
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) original.insert(v);
-    // A bound below `edge` far from the loops (or none at all: 0 or NaN would refine forever) counts as uniform.
-    const double far = std::isfinite(options.far_scale) && options.far_scale > 1.0 ? options.far_scale : 1.0;
-    if (options.edge > 0)
-      CGAL::refine_Delaunay_mesh_2(cdt, GradedCriteria(options.edge, far, options.near_edges, options.ramp_edges, boundary_distance),
-                                   true);
+    // A bound below `edge` far from the loops (or none at all: 0 or NaN would refine forever) counts as
+    // uniform: CGAL's own criteria, no distances to find.
+    const bool graded = std::isfinite(options.far_scale) && options.far_scale > 1.0;
+    if (options.edge > 0 && graded)
+      CGAL::refine_Delaunay_mesh_2(
+          cdt, GradedCriteria(options.edge, options.far_scale, options.near_edges, options.ramp_edges, boundary_distance), true);
+    else if (options.edge > 0)
+      CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125, options.edge), true);
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
       if (original.count(v) || cdt.are_there_incident_constraints(v)) continue;
       const Vec2 p{v->point().x(), v->point().y()};
