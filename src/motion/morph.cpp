@@ -20,6 +20,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
 #include <set>
@@ -27,6 +28,7 @@
 #include <Eigen/Sparse>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/errors.h"
@@ -867,7 +869,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
   const std::size_t frames = seq.frames.size();
   MeshSequence out;
   out.triangles = frame0.triangles;
-  out.positions.push_back(frame0.positions);
+  out.positions.resize(std::max<std::size_t>(1, frames));
+  out.positions[0] = frame0.positions;
   for (const Frame& f : seq.frames) out.times_ms.push_back(f.time_ms);
   MorphReport local;
   MorphReport& rep = report ? *report : local;
@@ -956,452 +959,482 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
       if (i < j) mesh_edges.push_back({static_cast<std::uint32_t>(i), j});
   const double pin_weight = 1e8;
   std::vector<Vec3> carry = frame0.positions;
-
-  for (std::size_t t = 1; t < frames; ++t) {
-    std::vector<Vec3> x = carry;  // the previous frame's mesh (before its contour fit)
-    if (opt.vertical_deformation) vertical_predeformation(seq, frame0.triangles, static_cast<int>(t), opt, x);
-    MorphFrameReport& fr = rep.frames[t];
-    std::vector<ChainTarget> matched;
-    std::vector<std::vector<Vec3>> lines;  // the matched contours of frame t
-    std::set<int> unmatched, held;         // held: slices whose chains do not slide in the relaxation
-    match_chains(seq, chains, x, static_cast<int>(t), opt, pin_spacing, slide_spacing, matched, lines, unmatched, fr,
-                 rep.events, counts);
-    if (project && opt.biharmonic) {
-      // Every slice keeps frame t−1's contours: the biharmonic displacement, if the triangles stay good.
-      std::vector<Vec3> y;
-      if (biharmonic.run(seq, static_cast<int>(t), x, mesh_edges, LtL, opt.threshold, y) &&
-          std::all_of(y.begin(), y.end(), [](const Vec3& p) { return is_finite(p); })) {
-        const std::vector<Vec3> before_fit = y;
-        // The section follows the contours only at the mesh's section points: where a contour has corners
-        // between them (coarse, jagged real contours), the same guarded fit as step 5 takes the surface
-        // onto it, and the frame is kept only if it gets within fit_goal_mm of every contour sample.
-        ContourFitReport cf;
-        if (opt.contour_fit) {
-          cf = guarded_contour_fit(y, frame0.triangles, contour_fit_samples(frame_contours(seq.frames[t]), opt.fit.step_mm),
-                                   std::vector<char>(nv, 0), ring_start, ring_index, opt.retry_min_angle_deg,
-                                   opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
-        }
-        const std::size_t crossings = count_self_intersections(TriangleMesh{y, frame0.triangles});
-        const FrameQuality q = frame_quality(y, frame0.triangles, crossings);
-        if (acceptable(q, opt) && cf.max_after_mm <= opt.fit_goal_mm) {
-          fr.biharmonic = true;
-          fr.fit_moved = cf.moved;
-          fr.fit_max_before = cf.max_before_mm;
-          fr.fit_max_after = cf.max_after_mm;
-          carry = before_fit;  // as step 5: the next frame starts from the mesh before the fit
-          out.positions.push_back(std::move(y));
-          continue;
-        }
-      }
-    }
-    if (project && slide_spacing > 0) {
-      hold_next_to(bands, unmatched, held);
-      hold_uneven_bands(bands, surface_of(t), seq.frames[t], seq.normal, opt.slide_anisotropy, held);
-    }
-    std::vector<std::pair<std::uint32_t, Vec3>> pins;
-    for (const ChainTarget& m : matched)
-      if (m.pinned) pins.push_back({m.vertex, m.position});
-
-    // 1. The paper's RBF from the matched chain points (subsampled as sources).
-    std::vector<Vec3> src, dst;
-    const int per_contour = project ? opt.guess_sources_per_contour : opt.sources_per_contour;
-    const std::size_t budget = static_cast<std::size_t>(std::max(1, per_contour)) *
-                               static_cast<std::size_t>(std::max(1, fr.matched));
-    const std::size_t stride = std::max<std::size_t>(1, matched.size() / budget);
-    for (std::size_t k = 0; k < matched.size(); k += stride) {
-      src.push_back(x[matched[k].vertex]);
-      dst.push_back(matched[k].position);
-    }
-    add_far_point(x, seq.normal, src, dst);
-    fr.sources = static_cast<int>(src.size());
-    if (!src.empty()) {
-      try {
-        deform_rbf(x, src, dst, project ? 1 : opt.rbf_steps);
-      } catch (const SolverError&) {
-        if (!project) throw;
-        x = carry;  // the projection below still fits the frame
-      }
-    }
-    std::vector<char> pinned(nv, 0);
-    for (const auto& [v, p] : pins) {
-      pinned[v] = 1;
-      x[v] = p;
-    }
-    // Sliding chain vertices: the contour they stay on, and the segment they were last found on.
-    std::vector<std::int32_t> slide_line(nv, -1), slide_hint(nv, -1);
-    std::vector<char> sliding(nv, 0);  // slides through the relaxation (else only snapped after it, if harmless)
-    for (const ChainTarget& m : matched)
-      if (m.line >= 0 && !pinned[m.vertex]) {
-        slide_line[m.vertex] = m.line;
-        sliding[m.vertex] = !held.count(m.slice);
-      }
-    auto slide = [&](std::size_t i, Vec3 p) {
-      return closest_on_loop(lines[static_cast<std::size_t>(slide_line[i])], p, slide_hint[i]);
-    };
-    std::vector<char> on_contour(nv, 0);
-    // Whether moving vertex i to p keeps its ring: no triangle turned by more than 60°, and the ring's
-    // smallest angle at least as large as before or as the repair's target.
-    // With max_good_loss >= 0, the ring may also lose at most that many angles in 40–80°.
-    auto harmless = [&](std::size_t i, Vec3 p, double floor_deg, int max_good_loss = -1) {
-      double before = 180, after = 180;
-      int good_before = 0, good_after = 0;
-      for (std::uint32_t f : incident[i]) {
-        const Triangle& tri = frame0.triangles[f];
-        Vec3 c[3];
-        for (std::size_t k = 0; k < 3; ++k) c[k] = tri[k] == i ? p : x[tri[k]];
-        const Vec3 n0 = cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]), n1 = cross(c[1] - c[0], c[2] - c[0]);
-        if (dot(n0, n1) <= 0.5 * norm(n0) * norm(n1)) return false;
-        before = std::min(before, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
-        after = std::min(after, min_angle_deg(c[0], c[1], c[2]));
-        if (max_good_loss >= 0) {
-          good_before += angles_40_80(x[tri[0]], x[tri[1]], x[tri[2]]);
-          good_after += angles_40_80(c[0], c[1], c[2]);
-        }
-      }
-      return after >= std::min(before, floor_deg) && (max_good_loss < 0 || good_after >= good_before - max_good_loss);
-    };
-
-    if (project) {
-      // 2. Laplacian-regularised projection onto the frame's own surface; pinned vertices held on
-      //    their contour points.
-      const SurfaceProjector surface(surface_of(t));
-      const Projector proj{surface, {}, &order};
-      if (pinned != factored_for) {
-        SparseMatrix W(static_cast<int>(nv), static_cast<int>(nv));
-        std::vector<Eigen::Triplet<double>> w;
-        for (std::size_t i = 0; i < nv; ++i) w.emplace_back(static_cast<int>(i), static_cast<int>(i), pinned[i] ? pin_weight : 1.0);
-        W.setFromTriplets(w.begin(), w.end());
-        if (!solver.compute(SparseMatrix(W + opt.stiffness * LtL)))
-          throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
-                            "failed to factor the deformation system");
-        factored_for = pinned;
-      }
-      const Eigen::MatrixXd ref_term = opt.stiffness * (LtL * to_matrix(x));
-      for (int it = 0; it < opt.projection_iterations; ++it) {
-        std::vector<Vec3> p = proj.project(x);
-        for (std::size_t i = 0; i < nv; ++i)
-          if (pinned[i]) p[i] = pin_weight * x[i];
-        x = from_matrix(solver.solve(to_matrix(p) + ref_term));
-        for (const auto& [v, q] : pins) x[v] = q;
-      }
-      // The normals of the landing triangles serve the first relaxation round (each round's closing
-      // projection gives the next one's), so no pass over the tree is spent on normals alone.
-      std::vector<Vec3> normals;
-      std::vector<Vec3> p = proj.project(x, &normals);
-      double sum = 0, mx = 0;
-      for (std::size_t i = 0; i < nv; ++i) {
-        if (pinned[i]) continue;
-        const double d = distance(p[i], x[i]);
-        sum += d;
-        mx = std::max(mx, d);
-        x[i] = p[i];
-      }
-      fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
-      fr.projection_max = mx;
-      // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
-      //    Vertices on a contour move along it (they were put there before).
-      const double scale = std::sqrt(surface_area(surface_of(t)) / std::max(1e-12, surface_area(frame0)));
-      // Curvature weights of the umbrella (MorphOptions::saddle_curvature) in the bands beside slices whose
-      // contour count differs from frame 0's (saddles of split or merged contours).
-      double curv_dev = opt.saddle_curvature * median_edge;
-      std::vector<char> saddle_zone(nv, 0);
-      if (curv_dev > 0) {
-        const std::vector<std::pair<double, double>> zones = saddle_bands(seq, bands, static_cast<int>(t));
-        for (std::size_t i = 0; i < nv; ++i) {
-          const double h = dot(x[i], seq.normal);
-          for (const auto& [lo, hi] : zones) saddle_zone[i] = saddle_zone[i] || (h >= lo && h <= hi);
-        }
-      }
-      double settled = opt.relax_settled;  // 0 in a retry: its rounds run all their sweeps
-      auto relax = [&](int rounds, int sweeps) {
-        // Everything the sweeps read, in the breadth-first order (position k is vertex order[k]).
-        std::vector<char> held_k(nv), slides_k(nv), zone_k(nv);
-        for (std::size_t k = 0; k < nv; ++k) {
-          const std::uint32_t i = order[k];
-          held_k[k] = pinned[i];
-          slides_k[k] = on_contour[i];
-          zone_k[k] = curv_dev > 0 && saddle_zone[i];
-        }
-        std::vector<Vec3> xs(nv), ns(nv), moved(nv), vel(nv);
-        for (int r = 0; r < rounds; ++r) {
-          for (std::size_t k = 0; k < nv; ++k) {
-            xs[k] = x[order[k]];
-            ns[k] = normals[order[k]];
+  // Step 5 (the contour fit) of frame t runs as a task beside frame t+1's morph: the next frame starts from
+  // the mesh before the fit (carry), so nothing waits for it. Its result depends on its frame only.
+  tbb::task_group fits;
+  std::vector<std::exception_ptr> fit_errors(frames);
+  // The first frame's fit error: fits run for frames before any frame whose morph fails, so a fit error
+  // is reported before a morph error (as when the frames were done one after the other).
+  auto first_fit_error = [&] {
+    for (const std::exception_ptr& e : fit_errors)
+      if (e) return e;
+    return std::exception_ptr{};
+  };
+  try {
+    for (std::size_t t = 1; t < frames; ++t) {
+      std::vector<Vec3> x = carry;  // the previous frame's mesh (before its contour fit)
+      if (opt.vertical_deformation) vertical_predeformation(seq, frame0.triangles, static_cast<int>(t), opt, x);
+      MorphFrameReport& fr = rep.frames[t];
+      std::vector<ChainTarget> matched;
+      std::vector<std::vector<Vec3>> lines;  // the matched contours of frame t
+      std::set<int> unmatched, held;         // held: slices whose chains do not slide in the relaxation
+      match_chains(seq, chains, x, static_cast<int>(t), opt, pin_spacing, slide_spacing, matched, lines, unmatched, fr,
+                   rep.events, counts);
+      if (project && opt.biharmonic) {
+        // Every slice keeps frame t−1's contours: the biharmonic displacement, if the triangles stay good.
+        std::vector<Vec3> y;
+        if (biharmonic.run(seq, static_cast<int>(t), x, mesh_edges, LtL, opt.threshold, y) &&
+            std::all_of(y.begin(), y.end(), [](const Vec3& p) { return is_finite(p); })) {
+          const std::vector<Vec3> before_fit = y;
+          // The section follows the contours only at the mesh's section points: where a contour has corners
+          // between them (coarse, jagged real contours), the same guarded fit as step 5 takes the surface
+          // onto it, and the frame is kept only if it gets within fit_goal_mm of every contour sample.
+          ContourFitReport cf;
+          if (opt.contour_fit) {
+            cf = guarded_contour_fit(y, frame0.triangles, contour_fit_samples(frame_contours(seq.frames[t]), opt.fit.step_mm),
+                                     std::vector<char>(nv, 0), ring_start, ring_index, opt.retry_min_angle_deg,
+                                     opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
           }
-          std::fill(vel.begin(), vel.end(), Vec3{});
-          moved = xs;
-          const double beta = opt.relax_momentum;
-          // A round ends early once the sweeps have settled (MorphOptions::relax_settled; not in a retry).
-          const double settled2 = std::pow(std::max(0.0, settled) * median_edge, 2);
-          for (int sweep = 0; sweep < sweeps; ++sweep) {
-            std::atomic<double> largest{0.0};  // the sweep's largest squared move (a maximum: any order gives it)
-            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
-              double biggest = 0.0;
-              for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                if (held_k[i]) continue;
-                const Vec3 xi = xs[i], n = ns[i];
-                const std::uint32_t* ring = o_ring_index.data() + o_ring_start[i];
-                const std::size_t m = o_ring_start[i + 1] - o_ring_start[i];
-                if (m == 0) continue;
-                // Umbrella (uniform Laplacian) move, optionally blended with springs whose rest lengths are
-                // frame 0's edges scaled by the change of area: the springs' equilibrium is a similar copy of
-                // frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone can
-                // tangle under strong compression, so the default is the umbrella alone.
-                Vec3 c{}, g{}, mid{}, sp{};
-                const bool weighted = zone_k[i];
-                double wsum = 0;
-                for (std::size_t k = 0; k < m; ++k) {
-                  const Vec3 e = xs[ring[k]] - xi;
-                  double w = 1.0;
-                  // Chord height of the edge over the surface, from the two normals (L²/8R on a sphere).
-                  if (weighted)
-                    w += (std::abs(dot(e, n)) + std::abs(dot(e, ns[ring[k]]))) / (8.0 * curv_dev);
-                  wsum += w;
-                  c += w * e;
-                  if (opt.spring_weight != 0) {
-                    const double len = norm(e);
-                    if (len > 0) sp += std::clamp((len - scale * o_ring_rest[o_ring_start[i] + k]) / len, -0.3, 0.3) * e;
-                  }
-                }
-                if (opt.shape_weight > 0) {
-                  // Equilateral pull: the mean of the apexes of equilateral triangles raised, in the tangent
-                  // plane, on the edges (j, k) opposite the vertex: midpoint + √3/2 · n × e · |e| / |n × e|.
-                  // Two triangles at a time: one division and one square root instruction for both
-                  // (packed_math.h: the same bits as the scalar ones); the sums keep the triangles' order.
-                  std::size_t k = o_opp_start[i];
-                  const std::size_t k_end = o_opp_start[i + 1];
-                  auto edge = [&](std::size_t j, Vec3& e, double& ee, double& s2) {
-                    const Vec3 a = xs[o_opp_index[2 * j]] - xi, b = xs[o_opp_index[2 * j + 1]] - xi;
-                    e = b - a;
-                    mid += a + b;
-                    ee = dot(e, e);
-                    const double ne = dot(n, e);
-                    s2 = ee - ne * ne;
-                  };
-                  for (; k + 1 < k_end; k += 2) {
-                    Vec3 e0, e1;
-                    double ee0, s20, ee1, s21;
-                    edge(k, e0, ee0, s20);
-                    edge(k + 1, e1, ee1, s21);
-                    double f[2];
-                    sqrt_of_ratios2(ee0, s20, ee1, s21, f);
-                    if (s20 > 1e-300) g += f[0] * e0;
-                    if (s21 > 1e-300) g += f[1] * e1;
-                  }
-                  if (k < k_end) {
-                    Vec3 e0;
-                    double ee0, s20;
-                    edge(k, e0, ee0, s20);
-                    if (s20 > 1e-300) g += std::sqrt(ee0 / s20) * e0;
-                  }
-                }
-                const double inv = 1.0 / static_cast<double>(m);
-                if (weighted) c = (static_cast<double>(m) / wsum) * c;  // the weighted mean, as m × mean (saddle zones)
-                Vec3 d = (opt.spring_weight * sp + (1.0 - opt.spring_weight) * c) * inv;
-                if (opt.shape_weight > 0) {
-                  const double no = static_cast<double>(o_opp_start[i + 1] - o_opp_start[i]);
-                  const Vec3 pull = (0.5 * mid + 0.8660254037844386 * cross(n, g)) / std::max(1.0, no);
-                  d = (1.0 - opt.shape_weight) * d + opt.shape_weight * pull;
-                }
-                d -= dot(d, n) * n;
-                vel[i] = beta * vel[i] + opt.relax_step * d;
-                moved[i] = xi + vel[i];
-                if (slides_k[i]) {
-                  moved[i] = slide(order[i], moved[i]);
-                  vel[i] = moved[i] - xi;
-                }
-                biggest = std::max(biggest, dot(vel[i], vel[i]));
-              }
-              double seen = largest.load();
-              while (biggest > seen && !largest.compare_exchange_weak(seen, biggest)) {
-              }
-            });
-            std::swap(xs, moved);
-            if (settled2 > 0 && largest.load() < settled2) break;
+          const std::size_t crossings = count_self_intersections(TriangleMesh{y, frame0.triangles});
+          const FrameQuality q = frame_quality(y, frame0.triangles, crossings);
+          if (acceptable(q, opt) && cf.max_after_mm <= opt.fit_goal_mm) {
+            fr.biharmonic = true;
+            fr.fit_moved = cf.moved;
+            fr.fit_max_before = cf.max_before_mm;
+            fr.fit_max_after = cf.max_after_mm;
+            carry = before_fit;  // as step 5: the next frame starts from the mesh before the fit
+            out.positions[t] = std::move(y);
+            continue;
           }
-          for (std::size_t k = 0; k < nv; ++k) x[order[k]] = xs[k];
-          std::vector<Vec3> q = proj.project(x, &normals);
-          for (std::size_t i = 0; i < nv; ++i)
-            if (!pinned[i] && !on_contour[i]) x[i] = q[i];
         }
+      }
+      if (project && slide_spacing > 0) {
+        hold_next_to(bands, unmatched, held);
+        hold_uneven_bands(bands, surface_of(t), seq.frames[t], seq.normal, opt.slide_anisotropy, held);
+      }
+      std::vector<std::pair<std::uint32_t, Vec3>> pins;
+      for (const ChainTarget& m : matched)
+        if (m.pinned) pins.push_back({m.vertex, m.position});
+
+      // 1. The paper's RBF from the matched chain points (subsampled as sources).
+      std::vector<Vec3> src, dst;
+      const int per_contour = project ? opt.guess_sources_per_contour : opt.sources_per_contour;
+      const std::size_t budget = static_cast<std::size_t>(std::max(1, per_contour)) *
+                                 static_cast<std::size_t>(std::max(1, fr.matched));
+      const std::size_t stride = std::max<std::size_t>(1, matched.size() / budget);
+      for (std::size_t k = 0; k < matched.size(); k += stride) {
+        src.push_back(x[matched[k].vertex]);
+        dst.push_back(matched[k].position);
+      }
+      add_far_point(x, seq.normal, src, dst);
+      fr.sources = static_cast<int>(src.size());
+      if (!src.empty()) {
+        try {
+          deform_rbf(x, src, dst, project ? 1 : opt.rbf_steps);
+        } catch (const SolverError&) {
+          if (!project) throw;
+          x = carry;  // the projection below still fits the frame
+        }
+      }
+      std::vector<char> pinned(nv, 0);
+      for (const auto& [v, p] : pins) {
+        pinned[v] = 1;
+        x[v] = p;
+      }
+      // Sliding chain vertices: the contour they stay on, and the segment they were last found on.
+      std::vector<std::int32_t> slide_line(nv, -1), slide_hint(nv, -1);
+      std::vector<char> sliding(nv, 0);  // slides through the relaxation (else only snapped after it, if harmless)
+      for (const ChainTarget& m : matched)
+        if (m.line >= 0 && !pinned[m.vertex]) {
+          slide_line[m.vertex] = m.line;
+          sliding[m.vertex] = !held.count(m.slice);
+        }
+      auto slide = [&](std::size_t i, Vec3 p) {
+        return closest_on_loop(lines[static_cast<std::size_t>(slide_line[i])], p, slide_hint[i]);
       };
-      // A frame that ends with a triangle angle below retry_min_angle_deg, fewer than retry_min_good_share
-      // of its angles in 40–80° or crossing triangles (a band crowded as a branch point nears a slice or a
-      // contour shrinks fast; sliding chains hold the bands between them to frame 0's vertex count) is
-      // done again with no chain vertex put on a contour (only plane snaps that lose no angle in 40–80°)
-      // and retry_sweep_factor times the sweeps, retry_attempts times (each with twice the sweeps of the one
-      // before) until a try meets the criteria; the best try is kept.
-      const std::vector<Vec3> x_start = x, normals_start = normals;
-      const std::vector<std::int32_t> hints_start = proj.hints;
-      const std::vector<std::int32_t> slide_line_start = slide_line;
-      std::vector<Vec3> best;  // the best try so far
-      MorphFrameReport best_report;
-      FrameQuality best_quality;
-      int sweep_factor = 1;
-      for (int attempt = 0;; ++attempt) {
-        if (attempt >= 1) {
-          curv_dev = 0;
-          settled = 0;
-          sweep_factor = attempt == 1 ? std::max(1, opt.retry_sweep_factor) : 2 * sweep_factor;
-          x = x_start;
-          normals = normals_start;
-          proj.hints = hints_start;
-          std::fill(sliding.begin(), sliding.end(), 0);
-          std::fill(on_contour.begin(), on_contour.end(), 0);
-          std::fill(slide_hint.begin(), slide_hint.end(), -1);
-          slide_line = slide_line_start;
-          fr.plane_snapped = 0;
-          fr.sliding = 0;
-          fr.redone = true;
+      std::vector<char> on_contour(nv, 0);
+      // Whether moving vertex i to p keeps its ring: no triangle turned by more than 60°, and the ring's
+      // smallest angle at least as large as before or as the repair's target.
+      // With max_good_loss >= 0, the ring may also lose at most that many angles in 40–80°.
+      auto harmless = [&](std::size_t i, Vec3 p, double floor_deg, int max_good_loss = -1) {
+        double before = 180, after = 180;
+        int good_before = 0, good_after = 0;
+        for (std::uint32_t f : incident[i]) {
+          const Triangle& tri = frame0.triangles[f];
+          Vec3 c[3];
+          for (std::size_t k = 0; k < 3; ++k) c[k] = tri[k] == i ? p : x[tri[k]];
+          const Vec3 n0 = cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]), n1 = cross(c[1] - c[0], c[2] - c[0]);
+          if (dot(n0, n1) <= 0.5 * norm(n0) * norm(n1)) return false;
+          before = std::min(before, min_angle_deg(x[tri[0]], x[tri[1]], x[tri[2]]));
+          after = std::min(after, min_angle_deg(c[0], c[1], c[2]));
+          if (max_good_loss >= 0) {
+            good_before += angles_40_80(x[tri[0]], x[tri[1]], x[tri[2]]);
+            good_after += angles_40_80(c[0], c[1], c[2]);
+          }
         }
-        // Chain vertices of matched contours go onto their contour (the closest point) and slide along
-        // it from here on: the mesh then passes through the frame's contours, not only near them.
-        for (std::size_t i = 0; i < nv; ++i)
-          if (sliding[i]) {
-            x[i] = slide(i, x[i]);
-            on_contour[i] = 1;
-            ++fr.sliding;
-          }
-        // A retry relaxes sweep_factor times as many rounds, each of relax_sweeps sweeps ended by an exact
-        // projection, not rounds sweep_factor times as long: within a round every vertex moves in the
-        // tangent plane it had at the round's start, and over 800 sweeps a crowded, strongly bent patch (a
-        // basal contour shrinking to a third in one frame) drifts off the surface and folds when projected
-        // back.
-        relax(opt.relax_iterations * sweep_factor, opt.relax_sweeps);
-        // 3b. Chain vertices of matched contours onto their contour (the closest point), where their ring
-        //     keeps its smallest angle (or 32°): the mesh then passes through the frame's contours, not only
-        //     near them. They slide along it in the repair below. Elsewhere (a contour that shrank, crowding
-        //     its chain) they stay where the relaxation put them.
-        for (int pass = 0; pass < 2 && attempt == 0; ++pass)
+        return after >= std::min(before, floor_deg) && (max_good_loss < 0 || good_after >= good_before - max_good_loss);
+      };
+
+      if (project) {
+        // 2. Laplacian-regularised projection onto the frame's own surface; pinned vertices held on
+        //    their contour points.
+        const SurfaceProjector surface(surface_of(t));
+        const Projector proj{surface, {}, &order};
+        if (pinned != factored_for) {
+          SparseMatrix W(static_cast<int>(nv), static_cast<int>(nv));
+          std::vector<Eigen::Triplet<double>> w;
+          for (std::size_t i = 0; i < nv; ++i) w.emplace_back(static_cast<int>(i), static_cast<int>(i), pinned[i] ? pin_weight : 1.0);
+          W.setFromTriplets(w.begin(), w.end());
+          if (!solver.compute(SparseMatrix(W + opt.stiffness * LtL)))
+            throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
+                              "failed to factor the deformation system");
+          factored_for = pinned;
+        }
+        const Eigen::MatrixXd ref_term = opt.stiffness * (LtL * to_matrix(x));
+        for (int it = 0; it < opt.projection_iterations; ++it) {
+          std::vector<Vec3> p = proj.project(x);
+          for (std::size_t i = 0; i < nv; ++i)
+            if (pinned[i]) p[i] = pin_weight * x[i];
+          x = from_matrix(solver.solve(to_matrix(p) + ref_term));
+          for (const auto& [v, q] : pins) x[v] = q;
+        }
+        // The normals of the landing triangles serve the first relaxation round (each round's closing
+        // projection gives the next one's), so no pass over the tree is spent on normals alone.
+        std::vector<Vec3> normals;
+        std::vector<Vec3> p = proj.project(x, &normals);
+        double sum = 0, mx = 0;
+        for (std::size_t i = 0; i < nv; ++i) {
+          if (pinned[i]) continue;
+          const double d = distance(p[i], x[i]);
+          sum += d;
+          mx = std::max(mx, d);
+          x[i] = p[i];
+        }
+        fr.projection_mean = nv ? sum / static_cast<double>(nv) : 0;
+        fr.projection_max = mx;
+        // 3. Tangential relaxation: many cheap sweeps in the tangent planes, then an exact projection.
+        //    Vertices on a contour move along it (they were put there before).
+        const double scale = std::sqrt(surface_area(surface_of(t)) / std::max(1e-12, surface_area(frame0)));
+        // Curvature weights of the umbrella (MorphOptions::saddle_curvature) in the bands beside slices whose
+        // contour count differs from frame 0's (saddles of split or merged contours).
+        double curv_dev = opt.saddle_curvature * median_edge;
+        std::vector<char> saddle_zone(nv, 0);
+        if (curv_dev > 0) {
+          const std::vector<std::pair<double, double>> zones = saddle_bands(seq, bands, static_cast<int>(t));
           for (std::size_t i = 0; i < nv; ++i) {
-            if (slide_line[i] < 0 || on_contour[i]) continue;
-            std::int32_t hint = slide_hint[i];
-            const Vec3 q = closest_on_loop(lines[static_cast<std::size_t>(slide_line[i])], x[i], hint);
-            if (!harmless(i, q, opt.angle_repair.target_deg)) continue;
-            x[i] = q;
-            slide_hint[i] = hint;
-            on_contour[i] = 1;
-            ++fr.sliding;
+            const double h = dot(x[i], seq.normal);
+            for (const auto& [lo, hi] : zones) saddle_zone[i] = saddle_zone[i] || (h >= lo && h <= hi);
           }
-        // 3b'. Where a chain stayed off its contour (held slices: vertices flowed through the plane), the
-        //      mesh vertex nearest the plane on each edge that crosses it goes onto the contour instead, if
-        //      harmless: the section then passes through the contour at those vertices, not across a crease.
-        auto plane_snap = [&]() {
-          const std::vector<std::int32_t> best_line =
-              nearest_to_planes(x, ring_start, ring_index, lines, seq.normal, 2.0 * median_edge);
-          for (std::size_t i = 0; i < nv; ++i) {
-            if (best_line[i] < 0 || on_contour[i] || pinned[i]) continue;
-            std::int32_t hint = -1;
-            const Vec3 q = closest_on_loop(lines[static_cast<std::size_t>(best_line[i])], x[i], hint);
-            if (!harmless(i, q, opt.angle_repair.target_deg, attempt == 0 ? opt.plane_snap_good_loss : 0)) continue;
-            x[i] = q;
-            slide_line[i] = best_line[i];
-            slide_hint[i] = hint;
-            on_contour[i] = 1;
-            ++fr.plane_snapped;
+        }
+        double settled = opt.relax_settled;  // 0 in a retry: its rounds run all their sweeps
+        auto relax = [&](int rounds, int sweeps) {
+          // Everything the sweeps read, in the breadth-first order (position k is vertex order[k]).
+          std::vector<char> held_k(nv), slides_k(nv), zone_k(nv);
+          for (std::size_t k = 0; k < nv; ++k) {
+            const std::uint32_t i = order[k];
+            held_k[k] = pinned[i];
+            slides_k[k] = on_contour[i];
+            zone_k[k] = curv_dev > 0 && saddle_zone[i];
+          }
+          std::vector<Vec3> xs(nv), ns(nv), moved(nv), vel(nv);
+          for (int r = 0; r < rounds; ++r) {
+            for (std::size_t k = 0; k < nv; ++k) {
+              xs[k] = x[order[k]];
+              ns[k] = normals[order[k]];
+            }
+            std::fill(vel.begin(), vel.end(), Vec3{});
+            moved = xs;
+            const double beta = opt.relax_momentum;
+            // A round ends early once the sweeps have settled (MorphOptions::relax_settled; not in a retry).
+            const double settled2 = std::pow(std::max(0.0, settled) * median_edge, 2);
+            for (int sweep = 0; sweep < sweeps; ++sweep) {
+              std::atomic<double> largest{0.0};  // the sweep's largest squared move (a maximum: any order gives it)
+              tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
+                double biggest = 0.0;
+                for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                  if (held_k[i]) continue;
+                  const Vec3 xi = xs[i], n = ns[i];
+                  const std::uint32_t* ring = o_ring_index.data() + o_ring_start[i];
+                  const std::size_t m = o_ring_start[i + 1] - o_ring_start[i];
+                  if (m == 0) continue;
+                  // Umbrella (uniform Laplacian) move, optionally blended with springs whose rest lengths are
+                  // frame 0's edges scaled by the change of area: the springs' equilibrium is a similar copy of
+                  // frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone can
+                  // tangle under strong compression, so the default is the umbrella alone.
+                  Vec3 c{}, g{}, mid{}, sp{};
+                  const bool weighted = zone_k[i];
+                  double wsum = 0;
+                  for (std::size_t k = 0; k < m; ++k) {
+                    const Vec3 e = xs[ring[k]] - xi;
+                    double w = 1.0;
+                    // Chord height of the edge over the surface, from the two normals (L²/8R on a sphere).
+                    if (weighted)
+                      w += (std::abs(dot(e, n)) + std::abs(dot(e, ns[ring[k]]))) / (8.0 * curv_dev);
+                    wsum += w;
+                    c += w * e;
+                    if (opt.spring_weight != 0) {
+                      const double len = norm(e);
+                      if (len > 0) sp += std::clamp((len - scale * o_ring_rest[o_ring_start[i] + k]) / len, -0.3, 0.3) * e;
+                    }
+                  }
+                  if (opt.shape_weight > 0) {
+                    // Equilateral pull: the mean of the apexes of equilateral triangles raised, in the tangent
+                    // plane, on the edges (j, k) opposite the vertex: midpoint + √3/2 · n × e · |e| / |n × e|.
+                    // Two triangles at a time: one division and one square root instruction for both
+                    // (packed_math.h: the same bits as the scalar ones); the sums keep the triangles' order.
+                    std::size_t k = o_opp_start[i];
+                    const std::size_t k_end = o_opp_start[i + 1];
+                    auto edge = [&](std::size_t j, Vec3& e, double& ee, double& s2) {
+                      const Vec3 a = xs[o_opp_index[2 * j]] - xi, b = xs[o_opp_index[2 * j + 1]] - xi;
+                      e = b - a;
+                      mid += a + b;
+                      ee = dot(e, e);
+                      const double ne = dot(n, e);
+                      s2 = ee - ne * ne;
+                    };
+                    for (; k + 1 < k_end; k += 2) {
+                      Vec3 e0, e1;
+                      double ee0, s20, ee1, s21;
+                      edge(k, e0, ee0, s20);
+                      edge(k + 1, e1, ee1, s21);
+                      double f[2];
+                      sqrt_of_ratios2(ee0, s20, ee1, s21, f);
+                      if (s20 > 1e-300) g += f[0] * e0;
+                      if (s21 > 1e-300) g += f[1] * e1;
+                    }
+                    if (k < k_end) {
+                      Vec3 e0;
+                      double ee0, s20;
+                      edge(k, e0, ee0, s20);
+                      if (s20 > 1e-300) g += std::sqrt(ee0 / s20) * e0;
+                    }
+                  }
+                  const double inv = 1.0 / static_cast<double>(m);
+                  if (weighted) c = (static_cast<double>(m) / wsum) * c;  // the weighted mean, as m × mean (saddle zones)
+                  Vec3 d = (opt.spring_weight * sp + (1.0 - opt.spring_weight) * c) * inv;
+                  if (opt.shape_weight > 0) {
+                    const double no = static_cast<double>(o_opp_start[i + 1] - o_opp_start[i]);
+                    const Vec3 pull = (0.5 * mid + 0.8660254037844386 * cross(n, g)) / std::max(1.0, no);
+                    d = (1.0 - opt.shape_weight) * d + opt.shape_weight * pull;
+                  }
+                  d -= dot(d, n) * n;
+                  vel[i] = beta * vel[i] + opt.relax_step * d;
+                  moved[i] = xi + vel[i];
+                  if (slides_k[i]) {
+                    moved[i] = slide(order[i], moved[i]);
+                    vel[i] = moved[i] - xi;
+                  }
+                  biggest = std::max(biggest, dot(vel[i], vel[i]));
+                }
+                double seen = largest.load();
+                while (biggest > seen && !largest.compare_exchange_weak(seen, biggest)) {
+                }
+              });
+              std::swap(xs, moved);
+              if (settled2 > 0 && largest.load() < settled2) break;
+            }
+            for (std::size_t k = 0; k < nv; ++k) x[order[k]] = xs[k];
+            std::vector<Vec3> q = proj.project(x, &normals);
+            for (std::size_t i = 0; i < nv; ++i)
+              if (!pinned[i] && !on_contour[i]) x[i] = q[i];
           }
         };
-        if (opt.plane_snap && !lines.empty()) {
-          plane_snap();
-          // The triangles around the snapped vertices relax again (those slide along their contours), which
-          // brings more vertices near the planes for another snap.
-          for (int k = 0; k < opt.plane_snap_relax_rounds; ++k) {
-            relax(1, opt.relax_sweeps);
-            plane_snap();
+        // A frame that ends with a triangle angle below retry_min_angle_deg, fewer than retry_min_good_share
+        // of its angles in 40–80° or crossing triangles (a band crowded as a branch point nears a slice or a
+        // contour shrinks fast; sliding chains hold the bands between them to frame 0's vertex count) is
+        // done again with no chain vertex put on a contour (only plane snaps that lose no angle in 40–80°)
+        // and retry_sweep_factor times the sweeps, retry_attempts times (each with twice the sweeps of the one
+        // before) until a try meets the criteria; the best try is kept.
+        const std::vector<Vec3> x_start = x, normals_start = normals;
+        const std::vector<std::int32_t> hints_start = proj.hints;
+        const std::vector<std::int32_t> slide_line_start = slide_line;
+        std::vector<Vec3> best;  // the best try so far
+        MorphFrameReport best_report;
+        FrameQuality best_quality;
+        int sweep_factor = 1;
+        for (int attempt = 0;; ++attempt) {
+          if (attempt >= 1) {
+            curv_dev = 0;
+            settled = 0;
+            sweep_factor = attempt == 1 ? std::max(1, opt.retry_sweep_factor) : 2 * sweep_factor;
+            x = x_start;
+            normals = normals_start;
+            proj.hints = hints_start;
+            std::fill(sliding.begin(), sliding.end(), 0);
+            std::fill(on_contour.begin(), on_contour.end(), 0);
+            std::fill(slide_hint.begin(), slide_hint.end(), -1);
+            slide_line = slide_line_start;
+            fr.plane_snapped = 0;
+            fr.sliding = 0;
+            fr.redone = true;
           }
-        }
-        // 3c. Where the contour turns by more than corner_angle_deg, the nearest vertex on it moves onto
-        //     the corner exactly and stays there (else the edges beside it cut the corner).
-        std::vector<char> fixed = pinned;
-        {
-          std::vector<std::vector<std::uint32_t>> on_line(lines.size());
+          // Chain vertices of matched contours go onto their contour (the closest point) and slide along
+          // it from here on: the mesh then passes through the frame's contours, not only near them.
           for (std::size_t i = 0; i < nv; ++i)
-            if (on_contour[i]) on_line[static_cast<std::size_t>(slide_line[i])].push_back(static_cast<std::uint32_t>(i));
-          const double cos_corner = std::cos(opt.corner_angle_deg * 3.14159265358979323846 / 180.0);
-          for (std::size_t l = 0; l < lines.size(); ++l) {
-            const std::vector<Vec3>& L = lines[l];
-            const std::size_t n = L.size();
-            for (std::size_t k = 0; k < n && !on_line[l].empty(); ++k) {
-              const Vec3 a = L[k] - L[(k + n - 1) % n], b = L[(k + 1) % n] - L[k];
-              const double la = norm(a), lb = norm(b);
-              if (la <= 0 || lb <= 0 || dot(a, b) > cos_corner * la * lb) continue;  // turns less
-              // The nearest vertices up to two edges away, nearest first; the first whose ring keeps 20° (the
-              // repair below works around it) moves.
-              std::vector<std::pair<double, std::uint32_t>> near;
-              for (std::uint32_t v : on_line[l]) {
-                const double d = distance(x[v], L[k]);
-                if (d <= 2.0 * median_edge) near.push_back({d, v});
-              }
-              std::sort(near.begin(), near.end());
-              const std::size_t tries = attempt == 0 ? opt.corner_candidates : 1;  // the retry: the nearest only
-              for (std::size_t c = 0; c < std::min(near.size(), tries); ++c) {
-                const std::uint32_t v = near[c].second;
-                if (fixed[v] || !harmless(v, L[k], 20.0)) continue;
-                x[v] = L[k];
-                fixed[v] = 1;
-                break;
+            if (sliding[i]) {
+              x[i] = slide(i, x[i]);
+              on_contour[i] = 1;
+              ++fr.sliding;
+            }
+          // A retry relaxes sweep_factor times as many rounds, each of relax_sweeps sweeps ended by an exact
+          // projection, not rounds sweep_factor times as long: within a round every vertex moves in the
+          // tangent plane it had at the round's start, and over 800 sweeps a crowded, strongly bent patch (a
+          // basal contour shrinking to a third in one frame) drifts off the surface and folds when projected
+          // back.
+          relax(opt.relax_iterations * sweep_factor, opt.relax_sweeps);
+          // 3b. Chain vertices of matched contours onto their contour (the closest point), where their ring
+          //     keeps its smallest angle (or 32°): the mesh then passes through the frame's contours, not only
+          //     near them. They slide along it in the repair below. Elsewhere (a contour that shrank, crowding
+          //     its chain) they stay where the relaxation put them.
+          for (int pass = 0; pass < 2 && attempt == 0; ++pass)
+            for (std::size_t i = 0; i < nv; ++i) {
+              if (slide_line[i] < 0 || on_contour[i]) continue;
+              std::int32_t hint = slide_hint[i];
+              const Vec3 q = closest_on_loop(lines[static_cast<std::size_t>(slide_line[i])], x[i], hint);
+              if (!harmless(i, q, opt.angle_repair.target_deg)) continue;
+              x[i] = q;
+              slide_hint[i] = hint;
+              on_contour[i] = 1;
+              ++fr.sliding;
+            }
+          // 3b'. Where a chain stayed off its contour (held slices: vertices flowed through the plane), the
+          //      mesh vertex nearest the plane on each edge that crosses it goes onto the contour instead, if
+          //      harmless: the section then passes through the contour at those vertices, not across a crease.
+          auto plane_snap = [&]() {
+            const std::vector<std::int32_t> best_line =
+                nearest_to_planes(x, ring_start, ring_index, lines, seq.normal, 2.0 * median_edge);
+            for (std::size_t i = 0; i < nv; ++i) {
+              if (best_line[i] < 0 || on_contour[i] || pinned[i]) continue;
+              std::int32_t hint = -1;
+              const Vec3 q = closest_on_loop(lines[static_cast<std::size_t>(best_line[i])], x[i], hint);
+              if (!harmless(i, q, opt.angle_repair.target_deg, attempt == 0 ? opt.plane_snap_good_loss : 0)) continue;
+              x[i] = q;
+              slide_line[i] = best_line[i];
+              slide_hint[i] = hint;
+              on_contour[i] = 1;
+              ++fr.plane_snapped;
+            }
+          };
+          if (opt.plane_snap && !lines.empty()) {
+            plane_snap();
+            // The triangles around the snapped vertices relax again (those slide along their contours), which
+            // brings more vertices near the planes for another snap.
+            for (int k = 0; k < opt.plane_snap_relax_rounds; ++k) {
+              relax(1, opt.relax_sweeps);
+              plane_snap();
+            }
+          }
+          // 3c. Where the contour turns by more than corner_angle_deg, the nearest vertex on it moves onto
+          //     the corner exactly and stays there (else the edges beside it cut the corner).
+          std::vector<char> fixed = pinned;
+          {
+            std::vector<std::vector<std::uint32_t>> on_line(lines.size());
+            for (std::size_t i = 0; i < nv; ++i)
+              if (on_contour[i]) on_line[static_cast<std::size_t>(slide_line[i])].push_back(static_cast<std::uint32_t>(i));
+            const double cos_corner = std::cos(opt.corner_angle_deg * 3.14159265358979323846 / 180.0);
+            for (std::size_t l = 0; l < lines.size(); ++l) {
+              const std::vector<Vec3>& L = lines[l];
+              const std::size_t n = L.size();
+              for (std::size_t k = 0; k < n && !on_line[l].empty(); ++k) {
+                const Vec3 a = L[k] - L[(k + n - 1) % n], b = L[(k + 1) % n] - L[k];
+                const double la = norm(a), lb = norm(b);
+                if (la <= 0 || lb <= 0 || dot(a, b) > cos_corner * la * lb) continue;  // turns less
+                // The nearest vertices up to two edges away, nearest first; the first whose ring keeps 20° (the
+                // repair below works around it) moves.
+                std::vector<std::pair<double, std::uint32_t>> near;
+                for (std::uint32_t v : on_line[l]) {
+                  const double d = distance(x[v], L[k]);
+                  if (d <= 2.0 * median_edge) near.push_back({d, v});
+                }
+                std::sort(near.begin(), near.end());
+                const std::size_t tries = attempt == 0 ? opt.corner_candidates : 1;  // the retry: the nearest only
+                for (std::size_t c = 0; c < std::min(near.size(), tries); ++c) {
+                  const std::uint32_t v = near[c].second;
+                  if (fixed[v] || !harmless(v, L[k], 20.0)) continue;
+                  x[v] = L[k];
+                  fixed[v] = 1;
+                  break;
+                }
               }
             }
           }
+          // 4. The few triangles the relaxation leaves thin (saddles of splitting contours): their vertices
+          //    move within the frame's surface (along their contour when on one) to maximise their ring's
+          //    smallest angle.
+          auto snap_to = [&](std::uint32_t v, Vec3 c) {
+            return on_contour[v] ? slide(v, c) : surface.walk(c, nullptr, &proj.hints[v]);
+          };
+          if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, fixed, snap_to, opt.untangle_rounds);
+          if (opt.angle_repair.passes > 0)
+            fr.angle_repairs = repair_small_angles(x, frame0.triangles, fixed, snap_to, opt.angle_repair);
+          const FrameQuality q = frame_quality(x, frame0.triangles, fr.intersecting_pairs);
+          if (attempt == 0 || better(q, best_quality, opt.retry_min_angle_deg)) {
+            best = x;
+            best_report = fr;
+            best_quality = q;
+          }
+          if (acceptable(q, opt)) break;
+          // Tries after the first: retry_attempts, and crossing_retry_attempts more while the best so far
+          // still has crossing triangles (the surface would not be valid).
+          const int last = std::max(0, opt.retry_attempts) +
+                           (best_quality.crossings > 0 ? std::max(0, opt.crossing_retry_attempts) : 0);
+          if (attempt >= last) break;
         }
-        // 4. The few triangles the relaxation leaves thin (saddles of splitting contours): their vertices
-        //    move within the frame's surface (along their contour when on one) to maximise their ring's
-        //    smallest angle.
-        auto snap_to = [&](std::uint32_t v, Vec3 c) {
-          return on_contour[v] ? slide(v, c) : surface.walk(c, nullptr, &proj.hints[v]);
-        };
-        if (opt.untangle_rounds > 0) fr.intersecting_pairs = untangle(x, frame0.triangles, fixed, snap_to, opt.untangle_rounds);
-        if (opt.angle_repair.passes > 0)
-          fr.angle_repairs = repair_small_angles(x, frame0.triangles, fixed, snap_to, opt.angle_repair);
-        const FrameQuality q = frame_quality(x, frame0.triangles, fr.intersecting_pairs);
-        if (attempt == 0 || better(q, best_quality, opt.retry_min_angle_deg)) {
-          best = x;
-          best_report = fr;
-          best_quality = q;
+        if (fr.redone) {  // the best of the tries (report: redone, whichever it was)
+          x = std::move(best);
+          fr = best_report;
+          fr.redone = true;
         }
-        if (acceptable(q, opt)) break;
-        // Tries after the first: retry_attempts, and crossing_retry_attempts more while the best so far
-        // still has crossing triangles (the surface would not be valid).
-        const int last = std::max(0, opt.retry_attempts) +
-                         (best_quality.crossings > 0 ? std::max(0, opt.crossing_retry_attempts) : 0);
-        if (attempt >= last) break;
       }
-      if (fr.redone) {  // the best of the tries (report: redone, whichever it was)
-        x = std::move(best);
-        fr = best_report;
-        fr.redone = true;
+      for (const Vec3& p : x)
+        if (!is_finite(p))
+          throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
+                            "the deformation produced non-finite positions");
+      carry = x;
+      if (!(project && opt.contour_fit)) {
+        out.positions[t] = std::move(x);
+        continue;
       }
+      // 5. The surface onto the frame's contours where it cuts across them (contour_fit.h), as a task (above).
+      fits.run([&, t, before = std::move(x), pinned = std::move(pinned)] {
+        try {
+          std::vector<Vec3> fitted = before;
+          const std::vector<Vec3> samples = contour_fit_samples(frame_contours(seq.frames[t]), opt.fit.step_mm);
+          ContourFitReport cf = guarded_contour_fit(fitted, frame0.triangles, samples, pinned, ring_start, ring_index,
+                                                    opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
+          if (cf.max_after_mm > opt.fit_goal_mm && opt.fit_fallback_min_angle_deg < opt.fit_min_angle_deg) {
+            // Still off its contours by more than the goal: once more from the mesh before the fit, with the
+            // lower angle floor; the closer of the two is kept.
+            std::vector<Vec3> y = before;
+            const ContourFitReport again =
+                guarded_contour_fit(y, frame0.triangles, samples, pinned, ring_start, ring_index, opt.retry_min_angle_deg,
+                                    opt.fit_fallback_min_angle_deg, opt.angle_repair, opt.fit);
+            if (again.max_after_mm < cf.max_after_mm) {
+              fitted = std::move(y);
+              cf.moved = again.moved;
+              cf.max_after_mm = again.max_after_mm;
+            }
+          }
+          MorphFrameReport& r = rep.frames[t];  // only this task writes these fields of frame t
+          r.fit_moved = cf.moved;
+          r.fit_max_before = cf.max_before_mm;
+          r.fit_max_after = cf.max_after_mm;
+          out.positions[t] = std::move(fitted);
+        } catch (...) {
+          fit_errors[t] = std::current_exception();
+        }
+      });
     }
-    for (const Vec3& p : x)
-      if (!is_finite(p))
-        throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
-                          "the deformation produced non-finite positions");
-    carry = x;
-    if (project && opt.contour_fit) {
-      // 5. The surface onto the frame's contours where it cuts across them (contour_fit.h). The next
-      //    frame starts from the mesh before this fit (carry).
-      const std::vector<Vec3> samples = contour_fit_samples(frame_contours(seq.frames[t]), opt.fit.step_mm);
-      ContourFitReport cf = guarded_contour_fit(x, frame0.triangles, samples, pinned, ring_start, ring_index,
-                                                opt.retry_min_angle_deg, opt.fit_min_angle_deg, opt.angle_repair, opt.fit);
-      if (cf.max_after_mm > opt.fit_goal_mm && opt.fit_fallback_min_angle_deg < opt.fit_min_angle_deg) {
-        // Still off its contours by more than the goal: once more from the mesh before the fit, with the
-        // lower angle floor; the closer of the two is kept.
-        std::vector<Vec3> y = carry;
-        const ContourFitReport again =
-            guarded_contour_fit(y, frame0.triangles, samples, pinned, ring_start, ring_index, opt.retry_min_angle_deg,
-                                opt.fit_fallback_min_angle_deg, opt.angle_repair, opt.fit);
-        if (again.max_after_mm < cf.max_after_mm) {
-          x = std::move(y);
-          cf.moved = again.moved;
-          cf.max_after_mm = again.max_after_mm;
-        }
-      }
-      fr.fit_moved = cf.moved;
-      fr.fit_max_before = cf.max_before_mm;
-      fr.fit_max_after = cf.max_after_mm;
-    }
-    out.positions.push_back(std::move(x));
+  } catch (...) {
+    // A frame's morph failed: the fits still running finish first, and one of an earlier frame is reported
+    // instead (it would have come first).
+    const std::exception_ptr error = std::current_exception();
+    fits.wait();  // the tasks keep their errors
+    if (const std::exception_ptr e = first_fit_error()) std::rethrow_exception(e);
+    std::rethrow_exception(error);
   }
+  fits.wait();
+  if (const std::exception_ptr e = first_fit_error()) std::rethrow_exception(e);
   return out;
 }
 
