@@ -57,7 +57,7 @@ ContourFitReport fit_to_contours(std::vector<Vec3>& x, const std::vector<Triangl
 
 ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
                                const std::vector<Vec3>& samples, const std::vector<char>& fixed,
-                               const ContourFitOptions& opt) {
+                               const ContourFitOptions& opt, std::vector<std::int32_t>* sample_triangles) {
   ContourFitReport rep;
   const std::size_t nv = x.size(), ns = samples.size();
   if (ns == 0 || triangles.empty() || nv == 0) return rep;
@@ -65,15 +65,17 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
   std::vector<char> moved(nv, 0);
   std::vector<Vec3> closest(ns);
   std::vector<std::int32_t> tri_of(ns, -1);
+  const bool warm = sample_triangles != nullptr && sample_triangles->size() == ns;
+  if (warm) tri_of = *sample_triangles;
   for (int it = 0; it <= std::max(0, opt.iterations); ++it) {
     {
       const SurfaceProjector proj(TriangleMesh{x, triangles});
       if (proj.empty()) return rep;
-      // The first round searches the tree; later rounds walk from the triangle each sample landed on
-      // (the mesh moved only near the far samples).
+      // The first round searches the tree (unless an earlier call's answers are given); later rounds walk
+      // from the triangle each sample landed on (the mesh moved only near the far samples).
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ns), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s) {
-          std::int32_t hint = it == 0 ? -1 : proj.hint_of(tri_of[s]);
+          std::int32_t hint = it == 0 && !warm ? -1 : proj.hint_of(tri_of[s]);
           closest[s] = proj.walk(samples[s], nullptr, &hint);
           tri_of[s] = proj.mesh_triangle(hint);
         }
@@ -154,6 +156,7 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
       }
   }
   rep.moved = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
+  if (sample_triangles) *sample_triangles = std::move(tri_of);
   return rep;
 }
 

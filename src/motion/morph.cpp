@@ -528,18 +528,20 @@ ContourFitReport guarded_contour_fit(std::vector<Vec3>& x, const std::vector<Tri
                                      const std::vector<std::size_t>& ring_start, const std::vector<std::uint32_t>& ring_index,
                                      double repair_below_deg, double floor_deg, const AngleRepairOptions& repair,
                                      const ContourFitOptions& options) {
+  // Each call's closest points start the next call's search (the meshes differ only near the far samples).
+  std::vector<std::int32_t> sample_triangles;
   auto largest_distance = [&](const std::vector<Vec3>& positions) {
     ContourFitOptions measure = options;
     measure.iterations = 0;
     std::vector<Vec3> probe = positions;
-    return fit_to_points(probe, tris, samples, fixed, measure).max_before_mm;
+    return fit_to_points(probe, tris, samples, fixed, measure, &sample_triangles).max_before_mm;
   };
   ContourFitReport rep;
   std::vector<Vec3> start = x;  // what each round fits from
   std::vector<Vec3> harmless;   // the last harmless result
   for (int round = 0; round < 4; ++round) {
     std::vector<Vec3> fitted = start;
-    const ContourFitReport cf = fit_to_points(fitted, tris, samples, fixed, options);
+    const ContourFitReport cf = fit_to_points(fitted, tris, samples, fixed, options, &sample_triangles);
     if (round == 0) rep.max_before_mm = rep.max_after_mm = cf.max_before_mm;
     if (cf.moved == 0) break;
     std::vector<char> bad(x.size(), 0), repaired(x.size(), 0);

@@ -2,6 +2,7 @@
 // "Mesh Conformity"): it brings the surface onto contours that lie off it, leaves a surface that
 // already passes through its contours alone, keeps fixed vertices, and commutes with rigid motion.
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -72,6 +73,35 @@ TEST(ContourFit, CommutesWithRigidMotion) {
   fit_to_contours(a.positions, a.triangles, {ring}, {});
   fit_to_contours(b.positions, b.triangles, {moved_ring}, {});
   for (std::size_t v = 0; v < a.positions.size(); ++v) EXPECT_NEAR(distance(rigid(a.positions[v]), b.positions[v]), 0, 1e-6) << v;
+}
+
+// The closest points of an earlier call (sample_triangles) only start the search: a warm call fits as a
+// cold one does, and hands back a triangle for every sample within reach.
+TEST(ContourFit, WarmStartFromEarlierClosestPointsFitsTheSame) {
+  const std::vector<Vec3> samples = contour_fit_samples({circle(std::sqrt(400.0 - 36.0) + 0.3, 6.0)}, 0.2);
+  TriangleMesh cold = sphere(), warm = sphere();
+  // The earlier call: a measurement on the mesh a little off (as a guarded fit's rounds are).
+  std::vector<Vec3> earlier = warm.positions;
+  for (Vec3& p : earlier) p = p + Vec3{0.05, -0.03, 0.02};
+  std::vector<std::int32_t> hints;
+  ContourFitOptions measure;
+  measure.iterations = 0;
+  fit_to_points(earlier, warm.triangles, samples, {}, measure, &hints);
+  ASSERT_EQ(hints.size(), samples.size());
+  for (std::int32_t h : hints) ASSERT_GE(h, 0);
+  const ContourFitReport a = fit_to_points(cold.positions, cold.triangles, samples, {});
+  const ContourFitReport b = fit_to_points(warm.positions, warm.triangles, samples, {}, {}, &hints);
+  EXPECT_NEAR(a.max_before_mm, b.max_before_mm, 1e-9);
+  EXPECT_NEAR(a.max_after_mm, b.max_after_mm, 1e-9);
+  EXPECT_EQ(a.moved, b.moved);
+  for (std::size_t v = 0; v < cold.positions.size(); ++v)
+    EXPECT_NEAR(distance(cold.positions[v], warm.positions[v]), 0, 1e-9) << v;
+  // Hints of the wrong size are ignored (a cold search).
+  std::vector<std::int32_t> stale(3, 0);
+  TriangleMesh again = sphere();
+  const ContourFitReport c = fit_to_points(again.positions, again.triangles, samples, {}, {}, &stale);
+  EXPECT_NEAR(c.max_after_mm, a.max_after_mm, 1e-9);
+  EXPECT_EQ(stale.size(), samples.size());
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 //! least-squares displacement so that the surface passes through the contour samples.
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "contour4d/core/mesh.h"
@@ -43,9 +44,14 @@ ContourFitReport fit_to_contours(std::vector<Vec3>& x, const std::vector<Triangl
                                  const ContourFitOptions& options = {});
 
 //! The same with the samples given: points the surface should pass through (mm).
+//! `sample_triangles` (optional, in and out): per sample, the triangle (index in `triangles`; −1: none)
+//! its closest point was found on, by an earlier call on the same samples and triangles at nearby positions.
+//! The first closest-point round then walks over the surface from there instead of searching the whole
+//! mesh; on return it holds this call's last answers.
 ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
                                const std::vector<Vec3>& samples, const std::vector<char>& fixed,
-                               const ContourFitOptions& options = {});
+                               const ContourFitOptions& options = {},
+                               std::vector<std::int32_t>* sample_triangles = nullptr);
 
 //! The samples fit_to_contours uses: points every `step` mm along each closed polyline.
 std::vector<Vec3> contour_fit_samples(const std::vector<std::vector<Vec3>>& contours, double step);
