@@ -64,9 +64,8 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
   std::vector<std::vector<std::uint32_t>> nb;  // one-rings, built once a region has to move
   std::vector<char> moved(nv, 0);
   std::vector<Vec3> closest(ns);
-  std::vector<std::int32_t> tri_of(ns, -1);
   const bool warm = sample_triangles != nullptr && sample_triangles->size() == ns;
-  if (warm) tri_of = *sample_triangles;
+  std::vector<std::int32_t> tri_of = warm ? *sample_triangles : std::vector<std::int32_t>(ns, -1);
   for (int it = 0; it <= std::max(0, opt.iterations); ++it) {
     {
       const SurfaceProjector proj(TriangleMesh{x, triangles});

@@ -965,13 +965,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
   // the mesh before the fit (carry), so nothing waits for it. Its result depends on its frame only.
   tbb::task_group fits;
   std::vector<std::exception_ptr> fit_errors(frames);
-  // The first frame's fit error: fits run for frames before any frame whose morph fails, so a fit error
-  // is reported before a morph error (as when the frames were done one after the other).
-  auto first_fit_error = [&] {
-    for (const std::exception_ptr& e : fit_errors)
-      if (e) return e;
-    return std::exception_ptr{};
-  };
+  std::exception_ptr morph_error;
   try {
     for (std::size_t t = 1; t < frames; ++t) {
       std::vector<Vec3> x = carry;  // the previous frame's mesh (before its contour fit)
@@ -1428,15 +1422,14 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
       });
     }
   } catch (...) {
-    // A frame's morph failed: the fits still running finish first, and one of an earlier frame is reported
-    // instead (it would have come first).
-    const std::exception_ptr error = std::current_exception();
-    fits.wait();  // the tasks keep their errors
-    if (const std::exception_ptr e = first_fit_error()) std::rethrow_exception(e);
-    std::rethrow_exception(error);
+    morph_error = std::current_exception();
   }
-  fits.wait();
-  if (const std::exception_ptr e = first_fit_error()) std::rethrow_exception(e);
+  fits.wait();  // the tasks keep their errors
+  // Fits run only for frames before one whose morph failed, so a fit's error is reported first (the lowest
+  // frame's), as when the frames were done one after the other.
+  for (const std::exception_ptr& e : fit_errors)
+    if (e) std::rethrow_exception(e);
+  if (morph_error) std::rethrow_exception(morph_error);
   return out;
 }
 
