@@ -72,11 +72,30 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
       if (proj.empty()) return rep;
       // The first round searches the tree (unless an earlier call's answers are given); later rounds walk
       // from the triangle each sample landed on (the mesh moved only near the far samples).
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ns), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t s = r.begin(); s < r.end(); ++s) {
-          std::int32_t hint = it == 0 && !warm ? -1 : proj.hint_of(tri_of[s]);
+      // A sample without an earlier answer walks from the answer of the sample before it in its block (the
+      // samples follow the contours, 0.2 mm apart); fixed blocks, each in sequence: the same answers at any
+      // thread count.
+      // Each block's first sample walks from the block before's first sample's answer (in sequence; the
+      // very first from triangle 0), so no query searches the tree from scratch.
+      constexpr std::size_t block = 64;
+      const std::size_t blocks = (ns + block - 1) / block;
+      const bool cold = it == 0 && !warm;
+      if (cold) {
+        std::int32_t chain = 0;
+        for (std::size_t b = 0; b < blocks; ++b) {
+          std::int32_t hint = chain;
+          closest[b * block] = proj.walk(samples[b * block], nullptr, &hint);
+          tri_of[b * block] = proj.mesh_triangle(hint);
+          chain = hint;
+        }
+      }
+      tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+        std::int32_t last = cold ? proj.hint_of(tri_of[b * block]) : -1;
+        for (std::size_t s = b * block + (cold ? 1 : 0); s < std::min(ns, (b + 1) * block); ++s) {
+          std::int32_t hint = cold ? last : proj.hint_of(tri_of[s]);
           closest[s] = proj.walk(samples[s], nullptr, &hint);
           tri_of[s] = proj.mesh_triangle(hint);
+          last = hint;
         }
       });
     }

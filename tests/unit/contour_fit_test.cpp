@@ -6,10 +6,12 @@
 #include <numbers>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "contour4d/metrics/quality.h"
 #include "contour4d/motion/contour_fit.h"
 #include "contour4d/motion/section.h"
+#include "contour4d/surface/surface_walk.h"
 #include "metrics_fixtures.h"
 
 namespace c4d {
@@ -102,6 +104,35 @@ TEST(ContourFit, WarmStartFromEarlierClosestPointsFitsTheSame) {
   const ContourFitReport c = fit_to_points(again.positions, again.triangles, samples, {}, {}, &stale);
   EXPECT_NEAR(c.max_after_mm, a.max_after_mm, 1e-9);
   EXPECT_EQ(stale.size(), samples.size());
+}
+
+TEST(ContourFit, SearchesWithoutEarlierAnswersFindTheClosestPoints) {
+  // Samples on three contours far apart, some a millimetre off the surface: each search starts from the
+  // answer of the sample before it (fit_to_points), yet finds the closest point of the whole surface, and
+  // the answers do not depend on the thread count.
+  std::vector<Vec3> samples = contour_fit_samples(
+      {circle(std::sqrt(400.0 - 36.0) + 0.3, 6.0), circle(std::sqrt(400.0 - 169.0) - 1.0, -13.0), circle(8.0, 19.0, 40)}, 0.2);
+  ASSERT_GT(samples.size(), 300u);  // several blocks of searches
+  const TriangleMesh m = sphere();
+  double truth = 0;
+  for (const Vec3& s : samples) {
+    double best = 1e300;
+    for (const Triangle& t : m.triangles)
+      best = std::min(best, distance(s, closest_on_triangle(s, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])));
+    truth = std::max(truth, best);
+  }
+  ContourFitOptions measure;
+  measure.iterations = 0;
+  measure.reach_mm = 10.0;  // every sample counts towards the largest distance
+  std::vector<Vec3> fitted[2];
+  for (int threads : {1, 2}) {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    std::vector<Vec3> probe = m.positions;
+    EXPECT_NEAR(fit_to_points(probe, m.triangles, samples, {}, measure).max_before_mm, truth, 1e-9) << threads;
+    fitted[threads - 1] = m.positions;
+    fit_to_points(fitted[threads - 1], m.triangles, samples, {});
+  }
+  for (std::size_t v = 0; v < m.positions.size(); ++v) EXPECT_EQ(fitted[0][v], fitted[1][v]) << v;
 }
 
 }  // namespace
