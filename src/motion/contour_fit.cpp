@@ -70,13 +70,12 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
     {
       const SurfaceProjector proj(TriangleMesh{x, triangles});
       if (proj.empty()) return rep;
-      // The first round searches the tree (unless an earlier call's answers are given); later rounds walk
-      // from the triangle each sample landed on (the mesh moved only near the far samples).
-      // A sample without an earlier answer walks from the answer of the sample before it in its block (the
-      // samples follow the contours, 0.2 mm apart); fixed blocks, each in sequence: the same answers at any
-      // thread count.
-      // Each block's first sample walks from the block before's first sample's answer (in sequence; the
-      // very first from triangle 0), so no query searches the tree from scratch.
+      // Later rounds (and a first round given an earlier call's answers) walk from the triangle each sample
+      // landed on (the mesh moved only near the far samples). A first round without them walks each sample
+      // from the answer of the sample before it in a fixed block of 64 (the samples follow the contours,
+      // 0.2 mm apart), each block's first from the block before's first (those in sequence; the very first
+      // from triangle 0). A walk that ends too far searches the tree from where it ended
+      // (SurfaceProjector::walk), never from scratch. The blocks do not depend on the thread count.
       constexpr std::size_t block = 64;
       const std::size_t blocks = (ns + block - 1) / block;
       const bool cold = it == 0 && !warm;

@@ -46,8 +46,8 @@ ContourFitReport fit_to_contours(std::vector<Vec3>& x, const std::vector<Triangl
 //! The same with the samples given: points the surface should pass through (mm).
 //! `sample_triangles` (optional, in and out): per sample, the triangle (index in `triangles`; −1: none)
 //! its closest point was found on, by an earlier call on the same samples and triangles at nearby positions.
-//! The first closest-point round then walks over the surface from there instead of searching the whole
-//! mesh; on return it holds this call's last answers.
+//! The first closest-point round then walks over the surface from there (without them, each sample walks
+//! from the answer of the sample before it); on return it holds this call's last answers.
 ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
                                const std::vector<Vec3>& samples, const std::vector<char>& fixed,
                                const ContourFitOptions& options = {},
