@@ -79,22 +79,20 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
       constexpr std::size_t block = 64;
       const std::size_t blocks = (ns + block - 1) / block;
       const bool cold = it == 0 && !warm;
-      if (cold) {
-        std::int32_t chain = 0;
+      auto search = [&](std::size_t s) {
+        std::int32_t hint = proj.hint_of(tri_of[s]);
+        closest[s] = proj.walk(samples[s], nullptr, &hint);
+        tri_of[s] = proj.mesh_triangle(hint);
+      };
+      if (cold)
         for (std::size_t b = 0; b < blocks; ++b) {
-          std::int32_t hint = chain;
-          closest[b * block] = proj.walk(samples[b * block], nullptr, &hint);
-          tri_of[b * block] = proj.mesh_triangle(hint);
-          chain = hint;
+          tri_of[b * block] = b == 0 ? proj.mesh_triangle(0) : tri_of[(b - 1) * block];
+          search(b * block);
         }
-      }
       tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-        std::int32_t last = cold ? proj.hint_of(tri_of[b * block]) : -1;
         for (std::size_t s = b * block + (cold ? 1 : 0); s < std::min(ns, (b + 1) * block); ++s) {
-          std::int32_t hint = cold ? last : proj.hint_of(tri_of[s]);
-          closest[s] = proj.walk(samples[s], nullptr, &hint);
-          tri_of[s] = proj.mesh_triangle(hint);
-          last = hint;
+          if (cold) tri_of[s] = tri_of[s - 1];
+          search(s);
         }
       });
     }
