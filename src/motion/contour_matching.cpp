@@ -25,13 +25,28 @@ struct ArcPolygon {
     length = s.back();
   }
   double wrap(double t) const {
+    if (t >= 0 && t < length) return t;  // what fmod gives there, without the call
     t = std::fmod(t, length);
     return t < 0 ? t + length : t;
   }
   Vec2 at(double t) const {
     t = wrap(t);
     const auto it = std::upper_bound(s.begin(), s.end(), t);
-    std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, (it - s.begin()) - 1));
+    return point(static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, (it - s.begin()) - 1)), t);
+  }
+  // at(t) for increasing t (after wrapping), as when a whole contour is mapped: the segment is found by
+  // stepping on from the last one (`cursor`, 0 to start) instead of a binary search; the same segment,
+  // so the same point.
+  Vec2 at_from(double t, std::size_t& cursor) const {
+    t = wrap(t);
+    if (cursor >= s.size() || s[cursor] > t) cursor = 0;
+    while (cursor + 1 < s.size() && s[cursor + 1] <= t) ++cursor;
+    return point(cursor, t);
+  }
+
+ private:
+  // The point at arc position t (wrapped) on segment i (s[i] <= t).
+  Vec2 point(std::size_t i, double t) const {
     if (i >= p.size()) i = p.size() - 1;
     const double len = s[i + 1] - s[i];
     const double f = len > 0 ? (t - s[i]) / len : 0.0;
@@ -116,8 +131,9 @@ ContourMatch match_contour(const std::vector<Vec2>& source, const std::vector<Ve
   const double ratio = b.length / a.length;
   auto cost = [&](double offset) {
     double c = 0;
+    std::size_t cursor = 0;  // the arc positions increase with i (wrapping once at most)
     for (std::size_t i = 0; i < source.size(); ++i) {
-      const Vec2 d = b.at(offset + a.s[i] * ratio) - source[i];
+      const Vec2 d = b.at_from(offset + a.s[i] * ratio, cursor) - source[i];
       c += dot(d, d);
     }
     return c;

@@ -446,30 +446,51 @@ std::vector<std::int32_t> nearest_to_planes(const std::vector<Vec3>& x, const st
     }
     return false;
   };
-  std::vector<std::int32_t> best_line(nv, -1);
-  std::vector<double> best_gap(nv, std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < nv; ++i) {
-    const double hi = dot(x[i], normal);
-    for (std::size_t r = ring_start[i]; r < ring_start[i + 1]; ++r) {
-      const std::uint32_t j = ring_index[r];
-      if (j <= i) continue;
-      const double hj = dot(x[j], normal);
-      for (std::size_t l = 0; l < lines.size(); ++l) {
-        const double di = hi - line_h[l], dj = hj - line_h[l];
-        if ((di > 0) == (dj > 0) && di != 0 && dj != 0) continue;
-        const std::size_t v = std::abs(di) <= std::abs(dj) ? i : j;
-        const double gap = std::abs(v == i ? di : dj);
-        // Which contour of the slice: the one nearest the crossing.
-        const double s = di == dj ? 0.5 : di / (di - dj);
-        const Vec3 c = x[i] + s * (x[j] - x[i]);
-        if (!within(l, c)) continue;
-        if (gap < best_gap[v]) {
-          best_gap[v] = gap;
-          best_line[v] = static_cast<std::int32_t>(l);
+  // The edges' crossings in parallel, in fixed blocks of vertices, each block listing its candidates in
+  // the serial loop's order; then each vertex keeps the first candidate with the smallest gap, the
+  // blocks taken in order: the same choice as one loop over the vertices, at any thread count.
+  struct Candidate {
+    std::uint32_t vertex;
+    std::int32_t line;
+    double gap;
+  };
+  constexpr std::size_t kBlock = 1024;
+  std::vector<std::vector<Candidate>> found((nv + kBlock - 1) / kBlock);
+  // An edge crosses (or touches) line l's plane exactly when line_h[l] lies between its ends' heights
+  // (di and dj below are then of opposite signs or zero): the sorted heights tell at once whether any
+  // does, and most edges cross none.
+  std::vector<double> heights = line_h;
+  std::sort(heights.begin(), heights.end());
+  tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t b) {
+    for (std::size_t i = b * kBlock; i < std::min(nv, (b + 1) * kBlock); ++i) {
+      const double hi = dot(x[i], normal);
+      for (std::size_t r = ring_start[i]; r < ring_start[i + 1]; ++r) {
+        const std::uint32_t j = ring_index[r];
+        if (j <= i) continue;
+        const double hj = dot(x[j], normal);
+        const auto first = std::lower_bound(heights.begin(), heights.end(), std::min(hi, hj));
+        if (first == heights.end() || *first > std::max(hi, hj)) continue;
+        for (std::size_t l = 0; l < lines.size(); ++l) {
+          const double di = hi - line_h[l], dj = hj - line_h[l];
+          if ((di > 0) == (dj > 0) && di != 0 && dj != 0) continue;
+          const std::size_t v = std::abs(di) <= std::abs(dj) ? i : j;
+          const double gap = std::abs(v == i ? di : dj);
+          // Which contour of the slice: the one nearest the crossing.
+          const double s = di == dj ? 0.5 : di / (di - dj);
+          const Vec3 c = x[i] + s * (x[j] - x[i]);
+          if (within(l, c)) found[b].push_back({static_cast<std::uint32_t>(v), static_cast<std::int32_t>(l), gap});
         }
       }
     }
-  }
+  });
+  std::vector<std::int32_t> best_line(nv, -1);
+  std::vector<double> best_gap(nv, std::numeric_limits<double>::infinity());
+  for (const std::vector<Candidate>& block : found)
+    for (const Candidate& c : block)
+      if (c.gap < best_gap[c.vertex]) {
+        best_gap[c.vertex] = c.gap;
+        best_line[c.vertex] = c.line;
+      }
   return best_line;
 }
 
