@@ -43,9 +43,24 @@
 #include "contour4d/motion/vertical_deformation.h"
 #include "contour4d/surface/angle_repair.h"
 #include "contour4d/surface/surface_projector.h"
+#include "sweep_lanes_internal.h"
 
 namespace c4d {
 namespace {
+
+// Vertices per relaxation sweep step (MorphOptions::sweep_lanes): 0 the widest this CPU runs (4 with
+// AVX, else 2 with SSE2), else the request limited to that; 1 without SSE2.
+int sweep_width(int requested) {
+#if defined(__SSE2__)
+  static const bool quad = detail::sweep_quad_available();
+  const int widest = quad ? 4 : 2;
+  if (requested <= 0) return widest;
+  return requested >= 4 ? widest : (requested >= 2 ? 2 : 1);
+#else
+  (void)requested;
+  return 1;
+#endif
+}
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
@@ -1164,16 +1179,30 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
             const double beta = opt.relax_momentum;
             // A round ends early once the sweeps have settled (MorphOptions::relax_settled; not in a retry).
             const double settled2 = std::pow(std::max(0.0, settled) * median_edge, 2);
+            // The default blend (springs off, equilateral pull on) steps several vertices at once
+            // (sweep_lanes_internal.h; MorphOptions::sweep_lanes), with the same result bit for bit.
+            const int lanes = opt.spring_weight == 0 && opt.shape_weight > 0 ? sweep_width(opt.sweep_lanes) : 1;
+            detail::SweepArrays arrays;
+            arrays.ns = ns.data();
+            arrays.ring_start = o_ring_start.data();
+            arrays.ring_index = o_ring_index.data();
+            arrays.opp_start = o_opp_start.data();
+            arrays.opp_index = o_opp_index.data();
+            arrays.zone = zone_k.data();
+            arrays.curv_dev = curv_dev;
+            arrays.shape_weight = opt.shape_weight;
+            arrays.beta = beta;
+            arrays.step = opt.relax_step;
             for (int sweep = 0; sweep < sweeps; ++sweep) {
               std::atomic<double> largest{0.0};  // the sweep's largest squared move (a maximum: any order gives it)
+              arrays.xs = xs.data();
               tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
                 double biggest = 0.0;
-                for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                  if (held_k[i]) continue;
+                // One vertex's step: its new velocity and position (before sliding).
+                auto single = [&](std::size_t i) {
                   const Vec3 xi = xs[i], n = ns[i];
                   const std::uint32_t* ring = o_ring_index.data() + o_ring_start[i];
                   const std::size_t m = o_ring_start[i + 1] - o_ring_start[i];
-                  if (m == 0) continue;
                   // Umbrella (uniform Laplacian) move, optionally blended with springs whose rest lengths are
                   // frame 0's edges scaled by the change of area: the springs' equilibrium is a similar copy of
                   // frame 0's triangles (the umbrella keeps any affinely stretched grid), but springs alone can
@@ -1237,12 +1266,39 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
                   d -= dot(d, n) * n;
                   vel[i] = beta * vel[i] + opt.relax_step * d;
                   moved[i] = xi + vel[i];
+                };
+                auto finish = [&](std::size_t i) {
                   if (slides_k[i]) {
                     moved[i] = slide(order[i], moved[i]);
-                    vel[i] = moved[i] - xi;
+                    vel[i] = moved[i] - xs[i];
                   }
                   biggest = std::max(biggest, dot(vel[i], vel[i]));
+                };
+                // The range's free vertices in groups of `lanes`, the last few two at a time or alone.
+                std::size_t group[4];
+                int count = 0;
+                auto step = [&](int width, const std::size_t* idx) {
+                  if (width == 4) detail::sweep_quad(arrays, idx, vel.data(), moved.data());
+#if defined(__SSE2__)
+                  else if (width == 2) detail::sweep_lanes<detail::Sse2Lanes>(arrays, idx, vel.data(), moved.data());
+#endif
+                  else single(idx[0]);
+                  for (int k = 0; k < width; ++k) finish(idx[k]);
+                };
+                for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                  if (held_k[i] || o_ring_start[i + 1] == o_ring_start[i]) continue;
+                  group[count++] = i;
+                  if (count == lanes) {
+                    step(lanes, group);
+                    count = 0;
+                  }
                 }
+                int done = 0;
+                if (count - done >= 2 && lanes > 1) {
+                  step(2, group + done);
+                  done += 2;
+                }
+                for (; done < count; ++done) step(1, group + done);
                 double seen = largest.load();
                 while (biggest > seen && !largest.compare_exchange_weak(seen, biggest)) {
                 }

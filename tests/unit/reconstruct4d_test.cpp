@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -193,6 +194,32 @@ TEST(Reconstruct4D, SaddleWeightsKeepTheSplitSectionsSaddleClose) {
   };
   for (std::size_t f = 0; f < a.positions.size(); ++f) EXPECT_LE(worst(a, f), 0.6) << "frame " << f;
   EXPECT_LT(worst(a, 1), 0.7 * worst(b, 1));
+}
+
+// The relaxation sweeps step two (SSE2) or four (AVX) vertices at once, each SIMD lane repeating the
+// one-vertex step's operations in order (sweep_lanes_internal.h): the frames are the same bit for bit
+// whatever the width. The left heart's ES frame has split sections, so the saddle-weighted umbrella is
+// stepped too; the ellipsoid's apex and base cross slices.
+TEST(Reconstruct4D, SweepsGiveTheSameFramesWhateverTheirSimdWidth) {
+  PhantomOptions po;
+  po.truth_edge = 2.0;
+  for (const Phantom& p : {make_phantom("left-heart", po), small_ellipsoid()}) {
+    std::vector<MeshSequence> runs;
+    for (int lanes : {1, 2, 4}) {
+      Reconstruct4DOptions o;
+      o.morph.sweep_lanes = lanes;
+      runs.push_back(reconstruct_4d(p.contours, o));
+    }
+    for (std::size_t r = 1; r < runs.size(); ++r) {
+      ASSERT_EQ(runs[r].positions.size(), runs[0].positions.size());
+      for (std::size_t f = 0; f < runs[0].positions.size(); ++f) {
+        ASSERT_EQ(runs[r].positions[f].size(), runs[0].positions[f].size());
+        EXPECT_EQ(0, std::memcmp(runs[r].positions[f].data(), runs[0].positions[f].data(),
+                                 runs[0].positions[f].size() * sizeof(Vec3)))
+            << p.name << " frame " << f << ", " << (r == 1 ? 2 : 4) << " lanes against 1";
+      }
+    }
+  }
 }
 
 // MorphOptions::biharmonic: frames whose contours keep frame t−1's topology follow them by one smooth

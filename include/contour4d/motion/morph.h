@@ -102,6 +102,9 @@ struct MorphOptions {
                                    //!< surface (from the normals at its ends), so edges across the saddle shorten and the
                                    //!< vertices gather where the surface bends (left heart ES: max distance to the truth
                                    //!< 0.98 → 0.38 mm); 0: off. Not used in a retry (retry_min_angle_deg)
+  int sweep_lanes = 0;             //!< relaxation: vertices per step of a sweep (SIMD lanes): 0 the widest the CPU runs
+                                   //!< (4 with AVX, else 2), 1, 2 or 4 (4 without AVX: 2); the result is the same bit
+                                   //!< for bit (each lane repeats the one-vertex step's operations; tested), the time not
   double spring_weight = 0.0;      //!< relaxation: share of springs (frame-0 edge lengths) against the umbrella
   double shape_weight = 0.5;       //!< relaxation: share of the equilateral pull (each triangle draws the vertex towards
                                    //!< the apex of the equilateral triangle on its opposite edge) against the umbrella;

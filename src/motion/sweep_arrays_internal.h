@@ -1,0 +1,32 @@
+#pragma once
+// What one relaxation sweep step reads (morph.cpp, "Tangential relaxation"; positions k in the
+// breadth-first order), for the several-vertex steps of sweep_lanes_internal.h.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "contour4d/core/vec.h"
+
+namespace c4d::detail {
+
+struct SweepArrays {
+  const Vec3* xs = nullptr;                // positions at the sweep's start
+  const Vec3* ns = nullptr;                // unit normals (the round's)
+  const std::size_t* ring_start = nullptr;  // each vertex's ring: ring_index[ring_start[k] .. ring_start[k + 1])
+  const std::uint32_t* ring_index = nullptr;
+  const std::size_t* opp_start = nullptr;  // each vertex's opposite edges: pairs in opp_index
+  const std::uint32_t* opp_index = nullptr;
+  const char* zone = nullptr;              // saddle-zone weights on (curv_dev > 0 there)
+  double curv_dev = 0;
+  double shape_weight = 0.5;
+  double beta = 0.9;
+  double step = 0.5;
+};
+
+//! Whether this CPU runs sweep_quad (AVX, and the build compiled it).
+bool sweep_quad_available();
+//! The step of the four vertices idx[0..4) (sweep_lanes with four lanes, compiled for AVX in its own
+//! file). \pre sweep_quad_available().
+void sweep_quad(const SweepArrays& s, const std::size_t* idx, Vec3* vel, Vec3* moved);
+
+}  // namespace c4d::detail
