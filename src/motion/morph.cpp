@@ -43,6 +43,7 @@
 #include "contour4d/motion/vertical_deformation.h"
 #include "contour4d/surface/angle_repair.h"
 #include "contour4d/surface/surface_projector.h"
+#include "simd_avx_internal.h"
 #include "sweep_lanes_internal.h"
 
 namespace c4d {
@@ -52,7 +53,7 @@ namespace {
 // AVX, else 2 with SSE2), else the request limited to that; 1 without SSE2.
 int sweep_width(int requested) {
 #if defined(__SSE2__)
-  static const bool quad = detail::sweep_quad_available();
+  static const bool quad = detail::avx_available();
   const int widest = quad ? 4 : 2;
   if (requested <= 0) return widest;
   return requested >= 4 ? widest : (requested >= 2 ? 2 : 1);

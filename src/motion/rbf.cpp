@@ -13,6 +13,8 @@
 
 #include "contour4d/core/errors.h"
 #include "contour4d/core/packed_math.h"
+#include "rbf_lanes_internal.h"
+#include "simd_avx_internal.h"
 
 namespace c4d {
 
@@ -91,13 +93,41 @@ Vec3 RbfDeformer::apply(Vec3 p) const {
     const Vec3 d = p - centers_[k];
     out += std::sqrt(dot(d, d) + c2_[k]) * weights_[k];
   }
-  if (affine_) out += a0_ + p.x * ax_ + p.y * ay_ + p.z * az_;
-  return out;
+  return with_affine(p, out);
+}
+
+Vec3 RbfDeformer::with_affine(Vec3 p, Vec3 sum) const {
+  if (affine_) sum += a0_ + p.x * ax_ + p.y * ay_ + p.z * az_;
+  return sum;
 }
 
 void RbfDeformer::apply(std::vector<Vec3>& points) const {
-  // Each point on its own: the same result on any number of threads.
+  // Each point on its own, four (AVX) or two (SSE2) per instruction, each lane summing the centres in
+  // apply(p)'s order (rbf_lanes_internal.h): the same result on any number of threads and any CPU.
+#if defined(__SSE2__)
+  static const bool quad = detail::avx_available();
+  const std::size_t groups = points.size() / 4;
+  tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
+    Vec3 in[4];
+    const Vec3* from[4];
+    Vec3* to[4];
+    for (std::size_t k = 0; k < 4; ++k) {
+      in[k] = points[4 * g + k];
+      from[k] = &in[k];
+      to[k] = &points[4 * g + k];
+    }
+    if (quad) {
+      detail::rbf_quad(centers_.data(), c2_.data(), weights_.data(), centers_.size(), from, to);
+    } else {
+      detail::rbf_lanes<detail::Sse2Lanes>(centers_.data(), c2_.data(), weights_.data(), centers_.size(), from, to);
+      detail::rbf_lanes<detail::Sse2Lanes>(centers_.data(), c2_.data(), weights_.data(), centers_.size(), from + 2, to + 2);
+    }
+    for (std::size_t k = 0; k < 4; ++k) *to[k] = with_affine(in[k], *to[k]);
+  });
+  for (std::size_t i = 4 * groups; i < points.size(); ++i) points[i] = apply(points[i]);
+#else
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) { points[i] = apply(points[i]); });
+#endif
 }
 
 void deform_rbf(std::vector<Vec3>& points, const std::vector<Vec3>& src, const std::vector<Vec3>& dst, int steps,

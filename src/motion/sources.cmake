@@ -5,10 +5,10 @@ target_sources(contour4d PRIVATE
   motion/contour_matching.cpp
   motion/section.cpp
   motion/morph.cpp
-  motion/sweep_avx.cpp
+  motion/simd_avx.cpp
   motion/reconstruct4d.cpp)
-# The relaxation sweep's four-vertex step is compiled for AVX; morph.cpp calls it only where the CPU has
-# AVX (the result is the same bit for bit either way).
+# The morph's four-lane steps (relaxation sweeps, RBF sums) are compiled for AVX; morph.cpp and rbf.cpp
+# call them only where the CPU has AVX (the result is the same bit for bit either way).
 if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$" AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-  set_source_files_properties(motion/sweep_avx.cpp TARGET_DIRECTORY contour4d PROPERTIES COMPILE_OPTIONS "-mavx")
+  set_source_files_properties(motion/simd_avx.cpp TARGET_DIRECTORY contour4d PROPERTIES COMPILE_OPTIONS "-mavx")
 endif()

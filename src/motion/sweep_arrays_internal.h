@@ -23,10 +23,4 @@ struct SweepArrays {
   double step = 0.5;
 };
 
-//! Whether this CPU runs sweep_quad (AVX, and the build compiled it).
-bool sweep_quad_available();
-//! The step of the four vertices idx[0..4) (sweep_lanes with four lanes, compiled for AVX in its own
-//! file). \pre sweep_quad_available().
-void sweep_quad(const SweepArrays& s, const std::size_t* idx, Vec3* vel, Vec3* moved);
-
 }  // namespace c4d::detail

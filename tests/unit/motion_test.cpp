@@ -54,6 +54,30 @@ TEST(Rbf, AffineTermReproducesRigidMotionEverywhere) {
   for (Vec3 q : {Vec3{1, 2, 3}, Vec3{-20, 5, 40}, Vec3{0, 0, 0}}) EXPECT_NEAR(distance(f.apply(q), rigid(q)), 0, 1e-7);
 }
 
+// RbfDeformer::apply(points) sums several points' multiquadrics per SIMD instruction (four with AVX, two
+// with SSE2, the last few one by one): each point's result is apply(p)'s, bit for bit, with and without
+// the affine term, whatever the count.
+TEST(Rbf, ManyPointsGiveEachPointsOwnResultBitForBit) {
+  const auto src = cloud();
+  std::vector<Vec3> dst = src;
+  for (std::size_t i = 0; i < dst.size(); ++i) dst[i] += Vec3{std::sin(i * 1.0), std::cos(i * 2.0), 0.5};
+  for (bool affine : {true, false}) {
+    RbfOptions o;
+    o.affine = affine;
+    const RbfDeformer f(src, dst, o);
+    for (std::size_t count : {1u, 3u, 4u, 7u, 53u}) {
+      std::vector<Vec3> pts;
+      for (std::size_t i = 0; i < count; ++i) pts.push_back({7 * std::sin(i * 0.9), 11 * std::cos(i * 0.4), 0.3 * i - 6});
+      const std::vector<Vec3> in = pts;
+      f.apply(pts);
+      for (std::size_t i = 0; i < count; ++i) {
+        const Vec3 one = f.apply(in[i]);
+        EXPECT_TRUE(one.x == pts[i].x && one.y == pts[i].y && one.z == pts[i].z) << "point " << i << " of " << count;
+      }
+    }
+  }
+}
+
 TEST(Rbf, SubStepsReachTheTargets) {
   const auto src = cloud();
   std::vector<Vec3> dst = src, pts = src;

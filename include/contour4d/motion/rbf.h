@@ -27,10 +27,14 @@ class RbfDeformer {
 
   //! The deformed position of p (mm).
   Vec3 apply(Vec3 p) const;
-  //! Deforms every point in place.
+  //! Deforms every point in place (several points per SIMD instruction where the CPU allows; each point's
+  //! result is apply(p)'s, bit for bit).
   void apply(std::vector<Vec3>& points) const;
 
  private:
+  //! The affine term added to `sum`, the point p plus its multiquadric sum.
+  Vec3 with_affine(Vec3 p, Vec3 sum) const;
+
   std::vector<Vec3> centers_;
   std::vector<double> c2_;
   std::vector<Vec3> weights_;
