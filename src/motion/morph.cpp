@@ -1194,10 +1194,28 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
             arrays.shape_weight = opt.shape_weight;
             arrays.beta = beta;
             arrays.step = opt.relax_step;
+            // The free vertices of each block of 512 positions, those with as many neighbours and opposite
+            // edges next to each other, so that a group of lanes spends no lane waiting out a longer ring
+            // (each vertex's step does not depend on its group or on the order within the block).
+            const std::size_t blocks = (nv + 511) / 512;
+            std::vector<std::size_t> free_k, block_start(blocks + 1, 0);
+            free_k.reserve(nv);
+            auto shape_of = [&](std::size_t k) {
+              return std::pair(o_ring_start[k + 1] - o_ring_start[k], o_opp_start[k + 1] - o_opp_start[k]);
+            };
+            for (std::size_t b = 0; b < blocks; ++b) {
+              const std::size_t first = free_k.size();
+              for (std::size_t k = 512 * b; k < std::min(nv, 512 * (b + 1)); ++k)
+                if (!held_k[k] && o_ring_start[k + 1] != o_ring_start[k]) free_k.push_back(k);
+              if (lanes > 1)
+                std::stable_sort(free_k.begin() + static_cast<std::ptrdiff_t>(first), free_k.end(),
+                                 [&](std::size_t a, std::size_t c) { return shape_of(a) < shape_of(c); });
+              block_start[b + 1] = free_k.size();
+            }
             for (int sweep = 0; sweep < sweeps; ++sweep) {
               std::atomic<double> largest{0.0};  // the sweep's largest squared move (a maximum: any order gives it)
               arrays.xs = xs.data();
-              tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 512), [&](const tbb::blocked_range<std::size_t>& range) {
+              tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& range) {
                 double biggest = 0.0;
                 // One vertex's step: its new velocity and position (before sliding).
                 auto single = [&](std::size_t i) {
@@ -1275,7 +1293,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
                   }
                   biggest = std::max(biggest, dot(vel[i], vel[i]));
                 };
-                // The range's free vertices in groups of `lanes`, the last few two at a time or alone.
+                // Each block's free vertices in groups of `lanes`, the last few two at a time or alone.
                 std::size_t group[4];
                 int count = 0;
                 auto step = [&](int width, const std::size_t* idx) {
@@ -1286,20 +1304,22 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
                   else single(idx[0]);
                   for (int k = 0; k < width; ++k) finish(idx[k]);
                 };
-                for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                  if (held_k[i] || o_ring_start[i + 1] == o_ring_start[i]) continue;
-                  group[count++] = i;
-                  if (count == lanes) {
-                    step(lanes, group);
-                    count = 0;
+                for (std::size_t b = range.begin(); b != range.end(); ++b) {
+                  for (std::size_t f = block_start[b]; f < block_start[b + 1]; ++f) {
+                    group[count++] = free_k[f];
+                    if (count == lanes) {
+                      step(lanes, group);
+                      count = 0;
+                    }
                   }
+                  int done = 0;
+                  if (count - done >= 2 && lanes > 1) {
+                    step(2, group + done);
+                    done += 2;
+                  }
+                  for (; done < count; ++done) step(1, group + done);
+                  count = 0;
                 }
-                int done = 0;
-                if (count - done >= 2 && lanes > 1) {
-                  step(2, group + done);
-                  done += 2;
-                }
-                for (; done < count; ++done) step(1, group + done);
                 double seen = largest.load();
                 while (biggest > seen && !largest.compare_exchange_weak(seen, biggest)) {
                 }
