@@ -1170,6 +1170,38 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
             zone_k[k] = curv_dev > 0 && saddle_zone[i];
           }
           std::vector<Vec3> xs(nv), ns(nv), moved(nv), vel(nv);
+          // The default blend (springs off, equilateral pull on) steps several vertices at once
+          // (sweep_lanes_internal.h; MorphOptions::sweep_lanes), with the same result bit for bit.
+          const int lanes = opt.spring_weight == 0 && opt.shape_weight > 0 ? sweep_width(opt.sweep_lanes) : 1;
+          detail::SweepArrays arrays;
+          arrays.ns = ns.data();
+          arrays.ring_start = o_ring_start.data();
+          arrays.ring_index = o_ring_index.data();
+          arrays.opp_start = o_opp_start.data();
+          arrays.opp_index = o_opp_index.data();
+          arrays.zone = zone_k.data();
+          arrays.curv_dev = curv_dev;
+          arrays.shape_weight = opt.shape_weight;
+          arrays.beta = opt.relax_momentum;
+          arrays.step = opt.relax_step;
+          // The free vertices of each block of 512 positions (the same in every round), those with as many
+          // neighbours and opposite edges next to each other, so that a group of lanes spends no lane waiting
+          // out a longer ring (each vertex's step does not depend on its group or on the order within the block).
+          const std::size_t blocks = (nv + 511) / 512;
+          std::vector<std::size_t> free_k, block_start(blocks + 1, 0);
+          free_k.reserve(nv);
+          auto shape_of = [&](std::size_t k) {
+            return std::pair(o_ring_start[k + 1] - o_ring_start[k], o_opp_start[k + 1] - o_opp_start[k]);
+          };
+          for (std::size_t b = 0; b < blocks; ++b) {
+            const std::size_t first = free_k.size();
+            for (std::size_t k = 512 * b; k < std::min(nv, 512 * (b + 1)); ++k)
+              if (!held_k[k] && o_ring_start[k + 1] != o_ring_start[k]) free_k.push_back(k);
+            if (lanes > 1)
+              std::stable_sort(free_k.begin() + static_cast<std::ptrdiff_t>(first), free_k.end(),
+                               [&](std::size_t a, std::size_t c) { return shape_of(a) < shape_of(c); });
+            block_start[b + 1] = free_k.size();
+          }
           for (int r = 0; r < rounds; ++r) {
             for (std::size_t k = 0; k < nv; ++k) {
               xs[k] = x[order[k]];
@@ -1180,38 +1212,6 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
             const double beta = opt.relax_momentum;
             // A round ends early once the sweeps have settled (MorphOptions::relax_settled; not in a retry).
             const double settled2 = std::pow(std::max(0.0, settled) * median_edge, 2);
-            // The default blend (springs off, equilateral pull on) steps several vertices at once
-            // (sweep_lanes_internal.h; MorphOptions::sweep_lanes), with the same result bit for bit.
-            const int lanes = opt.spring_weight == 0 && opt.shape_weight > 0 ? sweep_width(opt.sweep_lanes) : 1;
-            detail::SweepArrays arrays;
-            arrays.ns = ns.data();
-            arrays.ring_start = o_ring_start.data();
-            arrays.ring_index = o_ring_index.data();
-            arrays.opp_start = o_opp_start.data();
-            arrays.opp_index = o_opp_index.data();
-            arrays.zone = zone_k.data();
-            arrays.curv_dev = curv_dev;
-            arrays.shape_weight = opt.shape_weight;
-            arrays.beta = beta;
-            arrays.step = opt.relax_step;
-            // The free vertices of each block of 512 positions, those with as many neighbours and opposite
-            // edges next to each other, so that a group of lanes spends no lane waiting out a longer ring
-            // (each vertex's step does not depend on its group or on the order within the block).
-            const std::size_t blocks = (nv + 511) / 512;
-            std::vector<std::size_t> free_k, block_start(blocks + 1, 0);
-            free_k.reserve(nv);
-            auto shape_of = [&](std::size_t k) {
-              return std::pair(o_ring_start[k + 1] - o_ring_start[k], o_opp_start[k + 1] - o_opp_start[k]);
-            };
-            for (std::size_t b = 0; b < blocks; ++b) {
-              const std::size_t first = free_k.size();
-              for (std::size_t k = 512 * b; k < std::min(nv, 512 * (b + 1)); ++k)
-                if (!held_k[k] && o_ring_start[k + 1] != o_ring_start[k]) free_k.push_back(k);
-              if (lanes > 1)
-                std::stable_sort(free_k.begin() + static_cast<std::ptrdiff_t>(first), free_k.end(),
-                                 [&](std::size_t a, std::size_t c) { return shape_of(a) < shape_of(c); });
-              block_start[b + 1] = free_k.size();
-            }
             for (int sweep = 0; sweep < sweeps; ++sweep) {
               std::atomic<double> largest{0.0};  // the sweep's largest squared move (a maximum: any order gives it)
               arrays.xs = xs.data();
