@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -169,8 +170,14 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
 // in the cell of the larger of their lower corners only (a cell that both boxes meet), so once. A
 // surface's boxes are small and evenly spread; where the cells are crowded (more pair tests than
 // kCrowded per box) it returns false having called nothing, and the caller asks CGAL.
+//
+// `keys` (one per box) lets the grid drop, on data it holds side by side, pairs the caller would drop
+// anyway: two boxes with an equal key other than kNoKey (the caller: a shared vertex whose fan is
+// untangled) are not reported.
+constexpr std::uint32_t kNoKey = 0xFFFFFFFFu;
 template <class F>
-bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vector<char>* flagged, F&& f) {
+bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vector<char>* flagged,
+                            const std::vector<std::array<std::uint32_t, 3>>& keys, F&& f) {
   constexpr double kCrowded = 64.0;
   const std::size_t n = boxes.size();
   if (n < 2) return true;
@@ -243,15 +250,47 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
       const std::size_t t = boxes[m]->info();
       marked[m] = t < flagged->size() && (*flagged)[t] ? 1 : 0;
     }
+  // Each cell's boxes side by side in single precision, rounded outwards (so a pair of closed boxes
+  // that overlap also overlaps here), with their keys: the pair loop reads its cell in order, and only
+  // the pairs that pass go on to the exact test in double precision below.
+  struct Loose {
+    float lo[3], hi[3];
+    std::array<std::uint32_t, 3> key;
+  };
+  std::vector<Loose> by_box(n);
+  for (std::size_t m = 0; m < n; ++m) {
+    for (int d = 0; d < 3; ++d) {
+      const double l = box[m][d], h = box[m][d + 3];
+      float fl = static_cast<float>(l), fh = static_cast<float>(h);
+      if (static_cast<double>(fl) > l) fl = std::nextafter(fl, -std::numeric_limits<float>::infinity());
+      if (static_cast<double>(fh) < h) fh = std::nextafter(fh, std::numeric_limits<float>::infinity());
+      by_box[m].lo[d] = fl;
+      by_box[m].hi[d] = fh;
+    }
+    by_box[m].key = keys[m];
+  }
+  std::vector<Loose> loose(items.size());
+  for (std::size_t a = 0; a < items.size(); ++a) loose[a] = by_box[items[a]];
+  auto shares_key = [](const std::array<std::uint32_t, 3>& x, const std::array<std::uint32_t, 3>& y) {
+    for (std::uint32_t k : x)
+      if (k != kNoKey && (k == y[0] || k == y[1] || k == y[2])) return true;
+    return false;
+  };
   for (std::int64_t ci = 0; ci < size[0]; ++ci)
     for (std::int64_t cj = 0; cj < size[1]; ++cj)
       for (std::int64_t ck = 0; ck < size[2]; ++ck) {
         const std::size_t c = index(ci, cj, ck);
         for (std::uint32_t a = start[c]; a < start[c + 1]; ++a) {
           const std::uint32_t p = items[a];
+          const Loose lx = loose[a];
           const auto& x = box[p];
           const auto& sx = span[p];
           for (std::uint32_t b = a + 1; b < start[c + 1]; ++b) {
+            const Loose& ly = loose[b];
+            if (lx.lo[0] > ly.hi[0] || ly.lo[0] > lx.hi[0] || lx.lo[1] > ly.hi[1] || ly.lo[1] > lx.hi[1] ||
+                lx.lo[2] > ly.hi[2] || ly.lo[2] > lx.hi[2])
+              continue;
+            if (shares_key(lx.key, ly.key)) continue;
             const std::uint32_t q = items[b];
             const auto& y = box[q];
             if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) continue;
@@ -315,8 +354,15 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
     }
   };
   // The grid, or CGAL's box search where the grid's cells are crowded.
+  // The grid's keys: each triangle's vertices whose fans are untangled (pairs sharing one are dropped
+  // by the callback's first test).
+  std::vector<std::array<std::uint32_t, 3>> keys(all.size());
+  for (std::size_t m = 0; m < all.size(); ++m) {
+    const Triangle& t = mesh.triangles[all[m]->info()];
+    for (int k = 0; k < 3; ++k) keys[m][static_cast<std::size_t>(k)] = untangled[t[static_cast<std::size_t>(k)]] ? t[static_cast<std::size_t>(k)] : kNoKey;
+  }
   const bool nothing_flagged = only != nullptr && some.empty();
-  if (!nothing_flagged && !grid_overlapping_pairs(all, only, callback)) {
+  if (!nothing_flagged && !grid_overlapping_pairs(all, only, keys, callback)) {
     if (only == nullptr)
       CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), callback, std::ptrdiff_t(2000));
     else
