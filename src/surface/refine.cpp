@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "contour4d/surface/angle_repair.h"
 #include "contour4d/surface/isotropic_remesh.h"
@@ -93,39 +94,80 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
                                 const FlipOptions& options) {
   using Edge = std::pair<std::uint32_t, std::uint32_t>;
   auto& tris = mesh.triangles;
-  // Directed edge a→b → triangle holding it, per vertex a (a few entries each: a linear scan beats a hash).
+  // Directed edge a→b → triangle holding it, per vertex a: a few entries each, scanned in order (a
+  // linear scan beats a hash). All vertices' lists lie in one array, each with room for its first
+  // degree and some more (a flip adds one edge at each of its two far vertices); a list that outgrows
+  // its room has the whole array laid out again with more, the entries kept in their order.
   const std::size_t nv = mesh.positions.size();
-  std::vector<std::vector<std::pair<std::uint32_t, std::size_t>>> out(nv);
   constexpr std::size_t none = static_cast<std::size_t>(-1);
+  struct Owner {
+    std::uint32_t to;
+    std::size_t tri;
+  };
+  std::vector<std::uint32_t> first(nv + 1, 0), count(nv, 0);
+  std::vector<Owner> owners;
+  auto lay_out = [&](std::uint32_t slack) {
+    std::vector<std::uint32_t> new_first(nv + 1, 0);
+    for (std::size_t v = 0; v < nv; ++v) new_first[v + 1] = new_first[v] + count[v] + slack;
+    std::vector<Owner> moved(new_first[nv]);
+    if (!owners.empty())
+      for (std::size_t v = 0; v < nv; ++v)
+        std::copy_n(owners.begin() + first[v], count[v], moved.begin() + new_first[v]);
+    first.swap(new_first);
+    owners.swap(moved);
+  };
+  std::uint32_t slack = 4;
+  for (const Triangle& t : tris)
+    for (std::uint32_t v : t) ++count[v];
+  lay_out(slack);
+  std::fill(count.begin(), count.end(), 0);
   auto owner_of = [&](std::uint32_t a, std::uint32_t b) {
-    for (const auto& [v, t] : out[a])
-      if (v == b) return t;
+    for (std::uint32_t k = first[a], e = first[a] + count[a]; k < e; ++k)
+      if (owners[k].to == b) return owners[k].tri;
     return none;
   };
   auto set_owner = [&](std::uint32_t a, std::uint32_t b, std::size_t t) {
-    for (auto& [v, u] : out[a])
-      if (v == b) {
-        u = t;
+    for (std::uint32_t k = first[a], e = first[a] + count[a]; k < e; ++k)
+      if (owners[k].to == b) {
+        owners[k].tri = t;
         return;
       }
-    out[a].push_back({b, t});
+    if (first[a] + count[a] == first[a + 1]) {
+      slack *= 2;
+      lay_out(slack);
+    }
+    owners[first[a] + count[a]++] = {b, t};
   };
   auto erase_owner = [&](std::uint32_t a, std::uint32_t b) {
-    auto& o = out[a];
-    for (std::size_t k = 0; k < o.size(); ++k)
-      if (o[k].first == b) {
-        o.erase(o.begin() + static_cast<std::ptrdiff_t>(k));
+    for (std::uint32_t k = first[a], e = first[a] + count[a]; k < e; ++k)
+      if (owners[k].to == b) {
+        std::copy(owners.begin() + k + 1, owners.begin() + e, owners.begin() + k);
+        --count[a];
         return;
       }
   };
-  for (std::size_t t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) set_owner(tris[t][k], tris[t][(k + 1) % 3], t);
-  // Contour edges, per lower vertex.
-  std::vector<std::vector<std::uint32_t>> fixed_edges(nv);
-  for (const auto& e : constrained) fixed_edges[std::min(e[0], e[1])].push_back(std::max(e[0], e[1]));
+  // Edges that skip the full test (below) need every directed edge in one triangle and triangles of
+  // three distinct vertices; otherwise every edge gets the full test.
+  bool plain = options.skip_acute;
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const Triangle& tri = tris[t];
+    plain = plain && tri[0] != tri[1] && tri[1] != tri[2] && tri[2] != tri[0];
+    for (int k = 0; k < 3; ++k) {
+      plain = plain && owner_of(tri[k], tri[(k + 1) % 3]) == none;
+      set_owner(tri[k], tri[(k + 1) % 3], t);
+    }
+  }
+  // Contour edges, per lower vertex (one array, vertex by vertex, in the listed order).
+  std::vector<std::uint32_t> fixed_first(nv + 1, 0), fixed_to(constrained.size());
+  for (const auto& e : constrained) ++fixed_first[std::min(e[0], e[1]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) fixed_first[v + 1] += fixed_first[v];
+  {
+    std::vector<std::uint32_t> fill(fixed_first.begin(), fixed_first.end() - 1);
+    for (const auto& e : constrained) fixed_to[fill[std::min(e[0], e[1])]++] = std::max(e[0], e[1]);
+  }
   auto is_fixed = [&](std::uint32_t a, std::uint32_t b) {
-    const auto& f = fixed_edges[a];
-    return std::find(f.begin(), f.end(), b) != f.end();
+    const auto from = fixed_to.begin() + fixed_first[a], to = fixed_to.begin() + fixed_first[a + 1];
+    return std::find(from, to, b) != to;
   };
   const auto& x = mesh.positions;
   const double cos_dihedral = std::cos(options.max_dihedral_deg * std::numbers::pi / 180.0);
@@ -152,8 +194,32 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
       std::sort(edges.begin() + static_cast<std::ptrdiff_t>(from), edges.begin() + static_cast<std::ptrdiff_t>(bucket[v]));
       from = bucket[v];
     }
-    for (const Edge& e : edges) {
-      const auto [a, b] = e;
+    // The test below ends at once ("continue") for an edge whose two opposite angles are acute, and
+    // everything it reads before that only decides between other ends at once. So an edge needs the
+    // test only where a triangle beside it at the round's start has a right or obtuse angle opposite
+    // it, or where a flip earlier in this round changed a triangle beside it: the others are skipped
+    // with the same outcome, and the flips are those of testing every edge.
+    auto first_of = [&](std::uint32_t v) { return v == 0 ? std::size_t{0} : static_cast<std::size_t>(bucket[v - 1]); };
+    std::vector<char> candidate(edges.size(), plain ? 0 : 1);
+    auto mark = [&](std::uint32_t u, std::uint32_t w, std::size_t after) {
+      const Edge key{std::min(u, w), std::max(u, w)};
+      const auto from = edges.begin() + static_cast<std::ptrdiff_t>(first_of(key.first));
+      const auto to = edges.begin() + static_cast<std::ptrdiff_t>(bucket[key.first]);
+      const auto [lo, hi] = std::equal_range(from, to, key);
+      for (auto it = lo; it != hi; ++it) {
+        const auto at = static_cast<std::size_t>(it - edges.begin());
+        if (at + 1 > after) candidate[at] = 1;
+      }
+    };
+    if (plain)
+      for (const Triangle& tri : tris)
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t c = tri[k], p = tri[(k + 1) % 3], q = tri[(k + 2) % 3];
+          if (!(dot(x[p] - x[c], x[q] - x[c]) > 0)) mark(p, q, 0);
+        }
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      if (!candidate[i]) continue;
+      const auto [a, b] = edges[i];
       if (is_fixed(a, b)) continue;
       const std::size_t t1 = owner_of(a, b), t2 = owner_of(b, a);
       if (t1 == none || t2 == none) continue;  // boundary or already flipped away
@@ -186,6 +252,9 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
       tris[t2] = {c, d, b};
       for (std::size_t t : {t1, t2})
         for (int k = 0; k < 3; ++k) set_owner(tris[t][k], tris[t][(k + 1) % 3], t);
+      // The edges whose triangles changed get the full test where they come later in this round.
+      if (plain)
+        for (const auto& [u, w] : {Edge{a, b}, Edge{b, c}, Edge{c, a}, Edge{a, d}, Edge{d, b}, Edge{c, d}}) mark(u, w, i + 1);
       ++flipped_now;
     }
     flips += flipped_now;

@@ -189,6 +189,52 @@ TEST(Refine, FlipsRemoveAFlatTriangleAndKeepContourEdges) {
   for (const auto& e : contour) EXPECT_EQ(edges[std::make_pair(e[0], e[1])], 1) << e[0] << "-" << e[1];
 }
 
+TEST(Refine, FlipsSkippingAcuteEdgesAreThoseOfTestingEveryEdge) {
+  // A jittered, sheared grid on a gently bent sheet, each cell split along a random diagonal: many edges fail
+  // the Delaunay test and flips cascade over several rounds. Skipping the edges beside two acute
+  // angles must give the same triangles, flip for flip, as testing every edge.
+  constexpr std::uint32_t kSide = 40;
+  c4d::TriangleMesh m;
+  std::uint64_t state = 12345;
+  auto next = [&state] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;  // [0, 1)
+  };
+  for (std::uint32_t j = 0; j < kSide; ++j)
+    for (std::uint32_t i = 0; i < kSide; ++i) {
+      // Sheared rows: the Delaunay edges span several grid cells, so flips cascade.
+      const double x = i + 0.9 * j + 0.2 * (next() - 0.5), y = 0.3 * j + 0.06 * (next() - 0.5);
+      m.positions.push_back({x, y, 0.01 * x * x});
+    }
+  auto at = [](std::uint32_t i, std::uint32_t j) { return j * kSide + i; };
+  for (std::uint32_t j = 0; j + 1 < kSide; ++j)
+    for (std::uint32_t i = 0; i + 1 < kSide; ++i) {
+      const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      if (next() < 0.5) {
+        m.triangles.push_back({a, b, c});
+        m.triangles.push_back({a, c, d});
+      } else {
+        m.triangles.push_back({a, b, d});
+        m.triangles.push_back({b, c, d});
+      }
+    }
+  const std::vector<std::array<std::uint32_t, 2>> contour{{at(0, 0), at(1, 0)}, {at(1, 0), at(2, 0)}};
+  // One round as well: a round's result depends on the flips earlier in it (the full run converges
+  // to the same triangles whatever the order).
+  for (const auto& [below, rounds] : {std::pair{0.0, 20}, std::pair{35.0, 20}, std::pair{0.0, 1}, std::pair{35.0, 1}}) {
+    c4d::FlipOptions every, skipping;
+    every.only_below_deg = skipping.only_below_deg = below;
+    every.max_rounds = skipping.max_rounds = rounds;
+    every.skip_acute = false;
+    c4d::TriangleMesh a = m, b = m;
+    const std::size_t flips_every = c4d::flip_edges_delaunay(a, contour, every);
+    const std::size_t flips_skipping = c4d::flip_edges_delaunay(b, contour, skipping);
+    EXPECT_GT(flips_every, 100u) << below << " " << rounds;
+    EXPECT_EQ(flips_every, flips_skipping) << below << " " << rounds;
+    EXPECT_EQ(a.triangles, b.triangles) << below << " " << rounds;
+  }
+}
+
 TEST(Capping, CapCoversTheRegionAndKeepsLoopEdges) {
   const auto outer = c4d::canonical_polygon(ellipse(15, 9, 60), true);
   const auto hole = c4d::canonical_polygon(ellipse(4, 3, 20), false);

@@ -40,6 +40,8 @@ struct FlipOptions {
   int max_rounds = 20;             //!< passes over all edges at most
   double only_below_deg = 0.0;     //!< > 0: only flip an edge of a triangle with an angle below this, and only where
                                    //!< the flip raises the smallest angle of the pair (slivers left by the repair)
+  bool skip_acute = true;          //!< test only the edges beside a right or obtuse angle at a round's start, or
+                                   //!< beside a triangle a flip changed since (the same flips; false: test every edge)
 };
 
 //! Flips every edge whose two opposite angles sum to more than 180° (the local Delaunay test, on the
