@@ -10,6 +10,8 @@
 #include "contour4d/motion/reconstruct4d.h"
 #include "contour4d/phantoms/phantom.h"
 
+#include "bench_main.h"
+
 namespace {
 
 const c4d::Phantom& left_heart_cycle() {
@@ -65,4 +67,4 @@ BENCHMARK(BM_LeftHeartCycle_PaperRbf)->Arg(2)->Unit(benchmark::kMillisecond)->Us
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return c4d::bench::run_benchmarks(argc, argv); }

@@ -12,6 +12,8 @@
 #include "contour4d/phantoms/phantom.h"
 #include "contour4d/surface/reconstruct.h"
 
+#include "bench_main.h"
+
 namespace {
 
 // engine: both remeshers set to it (std::nullopt: the defaults, ours with rows and CGAL's without).
@@ -82,4 +84,4 @@ BENCHMARK_CAPTURE(phantom, torus_bands, std::string("torus"), false, true, std::
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bivme, frame0_bands, true, std::nullopt, false)->Unit(benchmark::kMillisecond);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return c4d::bench::run_benchmarks(argc, argv); }
