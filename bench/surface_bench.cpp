@@ -4,6 +4,7 @@
 // `_cgal_remesher` variants remesh with CGAL's isotropic remeshing instead of ours (SurfaceOptions::rows_remesher);
 // `_bands` variants are `--no-rows` (SurfaceOptions::rows = false: every band remeshed, the previous default).
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
 
 #include <optional>
 #include <string>
@@ -20,6 +21,8 @@ namespace {
 using Engine = std::optional<c4d::RemeshEngine>;
 
 void run(benchmark::State& state, const c4d::Sequence& seq, bool check, Engine engine = std::nullopt, bool rows = true) {
+  // One core: the target is per core, and the self-intersection test lists its pairs in parallel on large meshes.
+  const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   c4d::SurfaceOptions o;
   o.check_self_intersections = check;
   if (engine) o.remesher = o.rows_remesher = *engine;

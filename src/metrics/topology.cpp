@@ -23,6 +23,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include "../core/union_find_internal.h"
 
@@ -276,33 +277,49 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
       if (k != kNoKey && (k == y[0] || k == y[1] || k == y[2])) return true;
     return false;
   };
-  for (std::int64_t ci = 0; ci < size[0]; ++ci)
-    for (std::int64_t cj = 0; cj < size[1]; ++cj)
-      for (std::int64_t ck = 0; ck < size[2]; ++ck) {
-        const std::size_t c = index(ci, cj, ck);
-        for (std::uint32_t a = start[c]; a < start[c + 1]; ++a) {
-          const std::uint32_t p = items[a];
-          const Loose lx = loose[a];
-          const auto& x = box[p];
-          const auto& sx = span[p];
-          for (std::uint32_t b = a + 1; b < start[c + 1]; ++b) {
-            const Loose& ly = loose[b];
-            if (lx.lo[0] > ly.hi[0] || ly.lo[0] > lx.hi[0] || lx.lo[1] > ly.hi[1] || ly.lo[1] > lx.hi[1] ||
-                lx.lo[2] > ly.hi[2] || ly.lo[2] > lx.hi[2])
-              continue;
-            if (shares_key(lx.key, ly.key)) continue;
-            const std::uint32_t q = items[b];
-            const auto& y = box[q];
-            if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) continue;
-            if (!marked[p] && !marked[q]) continue;
-            // Met only in the cell of the larger lower corner.
-            const auto& sy = span[q];
-            if (std::max(sx[0], sy[0]) != ci || std::max(sx[1], sy[1]) != cj || std::max(sx[2], sy[2]) != ck) continue;
-            if (p < q) f(boxes[p], boxes[q]);
-            else f(boxes[q], boxes[p]);
-          }
+  // The cells in blocks of consecutive indices; each block lists its pairs in the serial loop's order
+  // (in parallel where the grid is large), then f sees the blocks' pairs in block order: the calls
+  // and their order are those of one loop over the cells, whatever the thread count.
+  constexpr std::size_t kCellsPerBlock = 512;
+  const std::size_t blocks = (ncells + kCellsPerBlock - 1) / kCellsPerBlock;
+  std::vector<std::vector<std::array<std::uint32_t, 2>>> found(blocks);
+  auto scan = [&](std::size_t block) {
+    auto& out = found[block];
+    const std::size_t c_end = std::min(ncells, (block + 1) * kCellsPerBlock);
+    for (std::size_t c = block * kCellsPerBlock; c < c_end; ++c) {
+      if (start[c + 1] - start[c] < 2) continue;
+      const auto ck = static_cast<std::int64_t>(c % static_cast<std::size_t>(size[2]));
+      const auto cj = static_cast<std::int64_t>((c / static_cast<std::size_t>(size[2])) % static_cast<std::size_t>(size[1]));
+      const auto ci = static_cast<std::int64_t>(c / static_cast<std::size_t>(size[2] * size[1]));
+      for (std::uint32_t a = start[c]; a < start[c + 1]; ++a) {
+        const std::uint32_t p = items[a];
+        const Loose lx = loose[a];
+        const auto& x = box[p];
+        const auto& sx = span[p];
+        for (std::uint32_t b = a + 1; b < start[c + 1]; ++b) {
+          const Loose& ly = loose[b];
+          if (lx.lo[0] > ly.hi[0] || ly.lo[0] > lx.hi[0] || lx.lo[1] > ly.hi[1] || ly.lo[1] > lx.hi[1] ||
+              lx.lo[2] > ly.hi[2] || ly.lo[2] > lx.hi[2])
+            continue;
+          if (shares_key(lx.key, ly.key)) continue;
+          const std::uint32_t q = items[b];
+          const auto& y = box[q];
+          if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) continue;
+          if (!marked[p] && !marked[q]) continue;
+          // Met only in the cell of the larger lower corner.
+          const auto& sy = span[q];
+          if (std::max(sx[0], sy[0]) != ci || std::max(sx[1], sy[1]) != cj || std::max(sx[2], sy[2]) != ck) continue;
+          out.push_back({std::min(p, q), std::max(p, q)});
         }
       }
+    }
+  };
+  if (n >= 8192 && blocks > 1)
+    tbb::parallel_for(std::size_t{0}, blocks, scan);
+  else
+    for (std::size_t block = 0; block < blocks; ++block) scan(block);
+  for (const auto& pairs : found)
+    for (const auto& [p, q] : pairs) f(boxes[p], boxes[q]);
   return true;
 }
 
