@@ -344,11 +344,31 @@ struct Remesher {
     std::size_t done = 0;
     const double low2 = low * low, high2 = high * high;
     std::vector<std::pair<double, std::uint64_t>> todo;
-    for_each_free_edge([&](std::uint32_t a, std::uint32_t b, double l2) {
-      if (l2 < low2 && !(locked[a] && locked[b]) && (touched.empty() || touched[a] || touched[b]))
-        todo.push_back({l2, edge_key(a, b)});
-    });
-    std::sort(todo.begin(), todo.end());
+    if (touched.empty()) {
+      for_each_free_edge([&](std::uint32_t a, std::uint32_t b, double l2) {
+        if (l2 < low2 && !(locked[a] && locked[b])) todo.push_back({l2, edge_key(a, b)});
+      });
+      std::sort(todo.begin(), todo.end());
+    } else {
+      // Only edges at a touched vertex qualify: found around those vertices instead of over every face,
+      // each from the same half-edge as for_each_free_edge (the one of the pair with the lower index), so
+      // the list, sorted and without the edges met from both ends, is the same.
+      for (std::size_t v = 0; v < touched.size(); ++v) {
+        if (!touched[v] || vert_dead[v] || out[v] == kNone) continue;
+        ring(static_cast<std::uint32_t>(v), scratch);
+        for (std::int32_t e : scratch) {
+          const std::int32_t o = opp[static_cast<std::size_t>(e)];
+          if (o == kNone) continue;
+          const std::int32_t h = std::min(e, o);
+          if (guarded(h)) continue;
+          const std::uint32_t a = from(h), b = to(h);
+          const double l2 = dot(x[a] - x[b], x[a] - x[b]);
+          if (l2 < low2 && !(locked[a] && locked[b])) todo.push_back({l2, edge_key(a, b)});
+        }
+      }
+      std::sort(todo.begin(), todo.end());
+      todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    }
     next_touched.assign(x.size(), 0);
     std::vector<std::uint32_t> nb;
     for (const auto& [l2, key] : todo) {
