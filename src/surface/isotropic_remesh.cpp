@@ -35,6 +35,7 @@ struct Remesher {
   std::vector<std::int32_t> face_hint, face_patch, vert_hint;
   const SurfaceWalk* ref = nullptr;
   std::vector<std::int32_t> scratch;
+  std::size_t last_pass_from_ = 0;  // split_long: the first vertex its last pass added
 
   static std::int32_t face_of(std::int32_t h) { return h / 3; }
   static std::int32_t next(std::int32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
@@ -249,16 +250,47 @@ struct Remesher {
     }
   }
 
+  // for_each_free_edge for the edges at vertex v only, each from the same half-edge (the lower index of
+  // its pair), so with the same a, b and length; an edge between two vertices visited comes twice.
+  template <class Fn>
+  void for_each_free_edge_at(std::uint32_t v, Fn fn) {
+    ring(v, scratch);
+    for (std::int32_t e : scratch) {
+      const std::int32_t o = opp[static_cast<std::size_t>(e)];
+      if (o == kNone) continue;
+      const std::int32_t h = std::min(e, o);
+      if (guarded(h)) continue;
+      const std::uint32_t a = from(h), b = to(h);
+      fn(a, b, dot(x[a] - x[b], x[a] - x[b]));
+    }
+  }
+
   void split_long(double high) {
     const double high2 = high * high;
     std::vector<std::pair<double, std::uint64_t>> todo;
     for (int pass = 0; pass < 64; ++pass) {
       todo.clear();
-      for_each_free_edge([&](std::uint32_t a, std::uint32_t b, double l2) {
-        if (l2 > high2) todo.push_back({-l2, edge_key(a, b)});
-      });
+      // Splits move no vertex and make only edges at their new midpoints: after the first pass, the
+      // edges still too long are at the vertices the pass before added. They are found there, each from
+      // the same half-edge as for_each_free_edge (the one of the pair with the lower index), sorted and
+      // met once: the same list as a pass over every face.
+      const std::size_t added_from = pass == 0 ? 0 : last_pass_from_;
+      if (pass == 0) {
+        for_each_free_edge([&](std::uint32_t a, std::uint32_t b, double l2) {
+          if (l2 > high2) todo.push_back({-l2, edge_key(a, b)});
+        });
+      } else {
+        for (std::size_t v = added_from; v < x.size(); ++v) {
+          if (vert_dead[v] || out[v] == kNone) continue;
+          for_each_free_edge_at(static_cast<std::uint32_t>(v), [&](std::uint32_t a, std::uint32_t b, double l2) {
+            if (l2 > high2) todo.push_back({-l2, edge_key(a, b)});
+          });
+        }
+      }
       if (todo.empty()) return;
       std::sort(todo.begin(), todo.end());
+      if (pass > 0) todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+      last_pass_from_ = x.size();
       for (const auto& [negl, key] : todo) {
         const std::int32_t h = find_halfedge(static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key & 0xffffffffu));
         if (h != kNone) split(h);
@@ -355,16 +387,9 @@ struct Remesher {
       // the list, sorted and without the edges met from both ends, is the same.
       for (std::size_t v = 0; v < touched.size(); ++v) {
         if (!touched[v] || vert_dead[v] || out[v] == kNone) continue;
-        ring(static_cast<std::uint32_t>(v), scratch);
-        for (std::int32_t e : scratch) {
-          const std::int32_t o = opp[static_cast<std::size_t>(e)];
-          if (o == kNone) continue;
-          const std::int32_t h = std::min(e, o);
-          if (guarded(h)) continue;
-          const std::uint32_t a = from(h), b = to(h);
-          const double l2 = dot(x[a] - x[b], x[a] - x[b]);
+        for_each_free_edge_at(static_cast<std::uint32_t>(v), [&](std::uint32_t a, std::uint32_t b, double l2) {
           if (l2 < low2 && !(locked[a] && locked[b])) todo.push_back({l2, edge_key(a, b)});
-        }
+        });
       }
       std::sort(todo.begin(), todo.end());
       todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
