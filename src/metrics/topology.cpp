@@ -370,7 +370,6 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
       if (first.size() > max_pairs_listed) first.erase(std::prev(first.end()));
     }
   };
-  // The grid, or CGAL's box search where the grid's cells are crowded.
   // The grid's keys: each triangle's vertices whose fans are untangled (pairs sharing one are dropped
   // by the callback's first test).
   std::vector<std::array<std::uint32_t, 3>> keys(all.size());
@@ -378,6 +377,7 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
     const Triangle& t = mesh.triangles[all[m]->info()];
     for (int k = 0; k < 3; ++k) keys[m][static_cast<std::size_t>(k)] = untangled[t[static_cast<std::size_t>(k)]] ? t[static_cast<std::size_t>(k)] : kNoKey;
   }
+  // The grid, or CGAL's box search where the grid's cells are crowded.
   const bool nothing_flagged = only != nullptr && some.empty();
   if (!nothing_flagged && !grid_overlapping_pairs(all, only, keys, callback)) {
     if (only == nullptr)

@@ -1313,9 +1313,9 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
                     }
                   }
                   int done = 0;
-                  if (count - done >= 2 && lanes > 1) {
-                    step(2, group + done);
-                    done += 2;
+                  if (count >= 2 && lanes > 1) {
+                    step(2, group);
+                    done = 2;
                   }
                   for (; done < count; ++done) step(1, group + done);
                   count = 0;

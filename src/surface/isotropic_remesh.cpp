@@ -35,7 +35,6 @@ struct Remesher {
   std::vector<std::int32_t> face_hint, face_patch, vert_hint;
   const SurfaceWalk* ref = nullptr;
   std::vector<std::int32_t> scratch;
-  std::size_t last_pass_from_ = 0;  // split_long: the first vertex its last pass added
 
   static std::int32_t face_of(std::int32_t h) { return h / 3; }
   static std::int32_t next(std::int32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
@@ -268,13 +267,13 @@ struct Remesher {
   void split_long(double high) {
     const double high2 = high * high;
     std::vector<std::pair<double, std::uint64_t>> todo;
+    std::size_t added_from = 0;  // the first vertex the last pass added
     for (int pass = 0; pass < 64; ++pass) {
       todo.clear();
       // Splits move no vertex and make only edges at their new midpoints: after the first pass, the
       // edges still too long are at the vertices the pass before added. They are found there, each from
       // the same half-edge as for_each_free_edge (the one of the pair with the lower index), sorted and
       // met once: the same list as a pass over every face.
-      const std::size_t added_from = pass == 0 ? 0 : last_pass_from_;
       if (pass == 0) {
         for_each_free_edge([&](std::uint32_t a, std::uint32_t b, double l2) {
           if (l2 > high2) todo.push_back({-l2, edge_key(a, b)});
@@ -290,7 +289,7 @@ struct Remesher {
       if (todo.empty()) return;
       std::sort(todo.begin(), todo.end());
       if (pass > 0) todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
-      last_pass_from_ = x.size();
+      added_from = x.size();
       for (const auto& [negl, key] : todo) {
         const std::int32_t h = find_halfedge(static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key & 0xffffffffu));
         if (h != kNone) split(h);

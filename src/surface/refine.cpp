@@ -201,14 +201,15 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
     // with the same outcome, and the flips are those of testing every edge.
     auto first_of = [&](std::uint32_t v) { return v == 0 ? std::size_t{0} : static_cast<std::size_t>(bucket[v - 1]); };
     std::vector<char> candidate(edges.size(), plain ? 0 : 1);
-    auto mark = [&](std::uint32_t u, std::uint32_t w, std::size_t after) {
+    // Marks edge u-w for the full test at its positions from `from_position` on.
+    auto mark = [&](std::uint32_t u, std::uint32_t w, std::size_t from_position) {
       const Edge key{std::min(u, w), std::max(u, w)};
       const auto from = edges.begin() + static_cast<std::ptrdiff_t>(first_of(key.first));
       const auto to = edges.begin() + static_cast<std::ptrdiff_t>(bucket[key.first]);
       const auto [lo, hi] = std::equal_range(from, to, key);
       for (auto it = lo; it != hi; ++it) {
         const auto at = static_cast<std::size_t>(it - edges.begin());
-        if (at + 1 > after) candidate[at] = 1;
+        if (at >= from_position) candidate[at] = 1;
       }
     };
     if (plain)
