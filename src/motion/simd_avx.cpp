@@ -10,7 +10,6 @@
 namespace c4d::detail {
 
 #if defined(__AVX__)
-bool avx_available() { return __builtin_cpu_supports("avx"); }
 void sweep_quad(const SweepArrays& s, const std::size_t* idx, Vec3* vel, Vec3* moved) {
   sweep_lanes<AvxLanes>(s, idx, vel, moved);
 }
@@ -19,7 +18,6 @@ void rbf_quad(const Vec3* centers, const double* c2, const Vec3* weights, std::s
   rbf_lanes<AvxLanes>(centers, c2, weights, n, points, out);
 }
 #else
-bool avx_available() { return false; }
 void sweep_quad(const SweepArrays&, const std::size_t*, Vec3*, Vec3*) {}
 void rbf_quad(const Vec3*, const double*, const Vec3*, std::size_t, const Vec3* const*, Vec3* const*) {}
 #endif

@@ -1,17 +1,16 @@
 #pragma once
 // The morph's four-lane (AVX) steps, compiled in simd_avx.cpp with AVX enabled: call them only where
-// avx_available() says the CPU runs them. Each gives what its two-lane (SSE2) and one-point forms give,
-// bit for bit (sweep_lanes_internal.h, rbf_lanes_internal.h).
+// avx_available() (core/avx_internal.h) says the CPU runs them. Each gives what its two-lane (SSE2) and
+// one-point forms give, bit for bit (sweep_lanes_internal.h, rbf_lanes_internal.h).
 
 #include <cstddef>
 
+#include "../core/avx_internal.h"
 #include "contour4d/core/vec.h"
 #include "sweep_arrays_internal.h"
 
 namespace c4d::detail {
 
-//! Whether this CPU runs the steps below (AVX, and the build compiled them).
-bool avx_available();
 //! The relaxation sweep step of the four vertices idx[0..4) (sweep_lanes). \pre avx_available().
 void sweep_quad(const SweepArrays& s, const std::size_t* idx, Vec3* vel, Vec3* moved);
 //! The RBF sums of four points (rbf_lanes). \pre avx_available().

@@ -83,9 +83,10 @@ bool same_bits(const Sparse& a, const Sparse& b) {
   return true;
 }
 
-// SparseLdlt orders from the lower triangle's pattern itself: the same permutation, factor and
-// solutions as SimplicialLDLT on grids of several sizes and weights (the fairing's and the morph's
-// systems), also when the upper triangle holds other values (it is never read) or is not stored.
+// SparseLdlt orders from the lower triangle's pattern itself and factors with its own loops: the same
+// permutation, factor and solutions as SimplicialLDLT on grids of several sizes and weights (the
+// fairing's and the morph's systems; their supernodes take the chain updates), at every SIMD width, also
+// when the upper triangle holds other values (it is never read) or is not stored.
 TEST(SparseSolve, SparseLdltIsSimplicialLdltBitForBit) {
   std::mt19937 rng(3);
   std::normal_distribution<double> nd(0.0, 10.0);
@@ -100,12 +101,14 @@ TEST(SparseSolve, SparseLdltIsSimplicialLdltBitForBit) {
     ASSERT_EQ(eigen.info(), Eigen::Success);
     Eigen::MatrixXd b(A.rows(), 3);
     for (Eigen::Index i = 0; i < b.size(); ++i) b.data()[i] = nd(rng);
-    for (const Sparse* input : std::vector<const Sparse*>{&A, &lower, &skewed}) {
-      SparseLdlt ours;
-      ASSERT_TRUE(ours.compute(*input));
-      EXPECT_TRUE(same_bits(Eigen::MatrixXd(ours.vectorD()), Eigen::MatrixXd(eigen.vectorD()))) << g;
-      EXPECT_TRUE(same_bits(ours.solve(b), eigen.solve(b))) << g;
-    }
+    for (const Sparse* input : std::vector<const Sparse*>{&A, &lower, &skewed})
+      for (int lanes : {0, 1, 2, 4}) {  // the chains' updates at every SIMD width, and Eigen's loop alone
+        SparseLdlt ours(lanes);
+        ASSERT_TRUE(ours.compute(*input));
+        EXPECT_TRUE(same_bits(Eigen::MatrixXd(ours.vectorD()), Eigen::MatrixXd(eigen.vectorD()))) << g << " " << lanes;
+        EXPECT_TRUE(same_bits(ours.solve(b), eigen.solve(b))) << g << " " << lanes;
+        EXPECT_TRUE(same_bits(ours.matrixL(), Sparse(eigen.matrixL().nestedExpression()))) << g << " " << lanes;
+      }
     // The factor itself: SimplicialLDLT with the natural ordering on the permuted matrix (what SparseLdlt
     // runs) has the factor of SimplicialLDLT with AMD.
     Sparse ap(A.rows(), A.cols());
