@@ -34,7 +34,8 @@ struct Remesher {
   std::vector<std::int32_t> out;  // per vertex: one outgoing half-edge
   std::vector<std::int32_t> face_hint, face_patch, vert_hint;
   const SurfaceWalk* ref = nullptr;
-  std::vector<std::int32_t> scratch;
+  std::vector<std::int32_t> scratch, around;  // ring() output; a copy kept while scratch is reused
+  bool ring_closed = false;                   // find_halfedge's ring in scratch is a closed fan
 
   static std::int32_t face_of(std::int32_t h) { return h / 3; }
   static std::int32_t next(std::int32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
@@ -75,9 +76,10 @@ struct Remesher {
     return static_cast<int>(scratch.size()) + (bnd[v] ? 1 : 0);
   }
 
+  // The half-edge a → b, or kNone; leaves a's ring in scratch (ring_closed: whether it is a closed fan).
   std::int32_t find_halfedge(std::uint32_t a, std::uint32_t b) {
     if (vert_dead[a] || vert_dead[b]) return kNone;
-    ring(a, scratch);
+    ring_closed = ring(a, scratch);
     for (std::int32_t h : scratch)
       if (to(h) == b) return h;
     // On a boundary the last fan face's incoming edge is not an outgoing half-edge of a.
@@ -299,7 +301,8 @@ struct Remesher {
 
   // Whether a (free, interior) may go onto b along half-edge h (as CGAL's collapse_short_edges): no edge
   // longer than high results, no face around a turns over, the link condition holds and no vertex is
-  // left with fewer than three neighbours.
+  // left with fewer than three neighbours. \pre scratch holds a's ring and ring_closed says whether it is
+  // closed (find_halfedge(a, b) found h).
   bool collapse_ok(std::int32_t h, double high2, std::vector<std::uint32_t>& nb) {
     const std::uint32_t a = from(h), b = to(h);
     const std::int32_t ho = opp[static_cast<std::size_t>(h)];
@@ -307,7 +310,7 @@ struct Remesher {
     if (c == d || bnd[a]) return false;
     const Vec3 p = x[b];
     const std::int32_t fa = face_of(h), fb = face_of(ho);
-    if (!ring(a, scratch) || scratch.size() <= 3) return false;
+    if (!ring_closed || scratch.size() <= 3) return false;
     for (std::int32_t e : scratch) {
       const std::uint32_t v = to(e);
       if (v != b && dot(p - x[v], p - x[v]) > high2) return false;
@@ -321,7 +324,7 @@ struct Remesher {
       const Vec3 n0 = normal(g), n1 = cross(q[1] - q[0], q[2] - q[0]);
       if (dot(n0, n1) <= 0) return false;
     }
-    const std::vector<std::int32_t> around_a = scratch;
+    around.assign(scratch.begin(), scratch.end());
     ring(b, scratch);
     nb.clear();
     for (std::int32_t e : scratch) {
@@ -329,7 +332,7 @@ struct Remesher {
       nb.push_back(from(prev(e)));
     }
     std::size_t common = 0;
-    for (std::int32_t e : around_a)
+    for (std::int32_t e : around)
       if (std::find(nb.begin(), nb.end(), to(e)) != nb.end()) ++common;
     if (common != 2) return false;
     return valence(c) > 3 && valence(d) > 3;
@@ -341,8 +344,7 @@ struct Remesher {
     const std::int32_t ho = opp[static_cast<std::size_t>(h)];
     const std::int32_t fa = face_of(h), fb = face_of(ho);
     const std::uint32_t c = to(next(h)), d = to(next(ho));
-    ring(a, scratch);
-    const std::vector<std::int32_t> around = scratch;
+    ring(a, around);
     const std::int32_t hbc = next(h), hca = prev(h), had = next(ho), hdb = prev(ho);
     const std::int32_t o1 = opp[static_cast<std::size_t>(hbc)], o2 = opp[static_cast<std::size_t>(hca)];
     const std::int32_t o3 = opp[static_cast<std::size_t>(had)], o4 = opp[static_cast<std::size_t>(hdb)];
@@ -395,8 +397,25 @@ struct Remesher {
     }
     next_touched.assign(x.size(), 0);
     std::vector<std::uint32_t> nb;
-    for (const auto& [l2, key] : todo) {
-      auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key & 0xffffffffu);
+    // The candidates' vertices and first faces lie anywhere in the arrays: fetched a few candidates ahead.
+    constexpr std::size_t kAhead = 8;
+    auto fetch_vertex = [&](std::size_t n) {
+      for (const std::uint32_t v : {static_cast<std::uint32_t>(todo[n].second >> 32), static_cast<std::uint32_t>(todo[n].second)}) {
+        __builtin_prefetch(&out[v]);
+        __builtin_prefetch(&x[v]);
+      }
+    };
+    auto fetch_face = [&](std::size_t n) {
+      for (const std::uint32_t v : {static_cast<std::uint32_t>(todo[n].second >> 32), static_cast<std::uint32_t>(todo[n].second)})
+        if (const std::int32_t h = out[v]; h != kNone) {
+          __builtin_prefetch(&opp[static_cast<std::size_t>(h)]);
+          __builtin_prefetch(&f[static_cast<std::size_t>(h / 3)]);
+        }
+    };
+    for (std::size_t n = 0; n < todo.size(); ++n) {
+      if (n + kAhead < todo.size()) fetch_vertex(n + kAhead);
+      if (n + kAhead / 2 < todo.size()) fetch_face(n + kAhead / 2);
+      auto a = static_cast<std::uint32_t>(todo[n].second >> 32), b = static_cast<std::uint32_t>(todo[n].second & 0xffffffffu);
       if (vert_dead[a] || vert_dead[b]) continue;
       if (locked[a]) std::swap(a, b);
       if (locked[a]) continue;
@@ -436,18 +455,22 @@ struct Remesher {
   // Consecutive faces around v (not across constrained edges) face the same way, as CGAL's check_normals.
   bool normals_consistent(std::uint32_t v) {
     ring(v, scratch);
+    return normals_consistent(v, scratch.data(), scratch.size());
+  }
+  // The same with v's ring (ring()'s half-edges) given.
+  bool normals_consistent(std::uint32_t v, const std::int32_t* hs, std::size_t count) const {
     const bool closed = !bnd[v];
     Vec3 first{}, prev{};
     bool have = false;
     // Faces k - 1 and k share the edge of half-edge k - 1; the last and the first that of the last.
-    for (std::size_t k = 0; k < scratch.size(); ++k) {
-      const Vec3 n = normal(face_of(scratch[k]));
-      if (have && !con[static_cast<std::size_t>(scratch[k - 1])] && dot(n, prev) <= 0) return false;
+    for (std::size_t k = 0; k < count; ++k) {
+      const Vec3 n = normal(face_of(hs[k]));
+      if (have && !con[static_cast<std::size_t>(hs[k - 1])] && dot(n, prev) <= 0) return false;
       if (!have) first = n;
       have = true;
       prev = n;
     }
-    if (closed && have && !con[static_cast<std::size_t>(scratch.back())] && dot(first, prev) <= 0) return false;
+    if (closed && have && !con[static_cast<std::size_t>(hs[count - 1])] && dot(first, prev) <= 0) return false;
     return true;
   }
 
@@ -535,12 +558,19 @@ struct Remesher {
     }
     std::vector<Vec3> target(nv);
     std::vector<char> moves(nv, 0);
+    // The rings of the vertices that move, kept for their normal checks (moves change no ring).
+    std::vector<std::uint32_t> ring_at(nv, 0), ring_size(nv, 0);
+    std::vector<std::int32_t> rings;
+    rings.reserve(7 * nv);
     for (std::size_t v = 0; v < nv; ++v) {
       if (vert_dead[v] || locked[v]) continue;
       const double ln = norm(vn[v]);
       if (!(ln > 0)) continue;
       const Vec3 n = vn[v] / ln;
       ring(static_cast<std::uint32_t>(v), scratch);
+      ring_at[v] = static_cast<std::uint32_t>(rings.size());
+      ring_size[v] = static_cast<std::uint32_t>(scratch.size());
+      rings.insert(rings.end(), scratch.begin(), scratch.end());
       Vec3 q{};
       for (std::int32_t h : scratch) q += x[to(h)];
       q = q / static_cast<double>(scratch.size());
@@ -552,7 +582,8 @@ struct Remesher {
       const Vec3 start = x[v], move = target[v] - start;
       double frac = 1.0;
       x[v] = target[v];
-      while (frac > 0.03 && !normals_consistent(static_cast<std::uint32_t>(v))) {
+      const std::int32_t* hs = rings.data() + ring_at[v];
+      while (frac > 0.03 && !normals_consistent(static_cast<std::uint32_t>(v), hs, ring_size[v])) {
         frac *= 0.5;
         x[v] = start + frac * move;
       }
