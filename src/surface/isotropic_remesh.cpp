@@ -523,16 +523,15 @@ struct Remesher {
         if (guarded(h) || ho < h) continue;
         const std::uint32_t a = from(h), b = to(h), c = to(next(h)), d = to(next(ho));
         if (c == d || valence[a] <= 3 || valence[b] <= 3) continue;
-        // Flipped where the new diagonal is the better one and either the valences improve or a face is
-        // badly shaped. The cheap tests first (most edges fail them); the outcome is the same in any order.
-        auto dev = [&](std::uint32_t v, int delta) { return std::abs(valence[v] + delta - target(v)); };
-        const int before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
-        const int after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
-        if (after >= before && !badly_shaped(x[a], x[b], x[c]) && !badly_shaped(x[b], x[a], x[d])) continue;
         // The better diagonal (CGAL's should_flip).
         const Vec3 n0 = cross(x[b] - x[a], x[c] - x[a]), n1 = cross(x[a] - x[b], x[d] - x[b]);
         const Vec3 m0 = cross(x[d] - x[a], x[c] - x[a]), m1 = cross(x[c] - x[b], x[d] - x[b]);
         if (!(dot(m0, m1) > dot(n0, n1))) continue;
+        auto dev = [&](std::uint32_t v, int delta) { return std::abs(valence[v] + delta - target(v)); };
+        const int before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
+        const int after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
+        // Flipped where the valences improve, or else where a face is badly shaped (tested only then).
+        if (after >= before && !badly_shaped(x[a], x[b], x[c]) && !badly_shaped(x[b], x[a], x[d])) continue;
         if (find_halfedge(c, d) != kNone || find_halfedge(d, c) != kNone) continue;
         const Vec3 n = n0 + n1;
         if (dot(m0, n) <= 0 || dot(m1, n) <= 0 || !(norm(m0) > 0) || !(norm(m1) > 0)) continue;
