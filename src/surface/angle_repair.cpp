@@ -46,20 +46,36 @@ struct TriangleGrid {
   std::int64_t lo[3] = {0, 0, 0}, size[3] = {0, 0, 0};
   std::vector<std::uint32_t> start;  // per cell, into items; one more at the end
   std::vector<std::uint32_t> items;  // triangles, cell by cell, each cell's in increasing order
-  // The cell index along one axis (clamped far beyond any mesh, so that the conversion stays defined).
-  std::int64_t at(double v) const { return static_cast<std::int64_t>(std::clamp(std::floor(v / cell), -1e15, 1e15)); }
-  // Calls f(cell index) for every cell of the block that the box [a, b] touches.
+  // The cell index along one axis, floor(v / cell) clamped far beyond any mesh (so that the conversion
+  // stays defined); the floor by truncation, which equals std::floor on that range.
+  std::int64_t at(double v) const {
+    const double q = std::clamp(v / cell, -1e15, 1e15);
+    auto t = static_cast<std::int64_t>(q);
+    if (static_cast<double>(t) > q) --t;
+    return t;
+  }
+  // The block's cells that the box [a, b] touches, as index ranges from[d]..to[d] per axis (clamped into
+  // the block at both ends: a monotone map, so boxes that overlap meet a common cell, also a box that
+  // moved out of the block since binning).
+  struct Range {
+    std::int64_t from[3], to[3];
+  };
+  Range range(Vec3 a, Vec3 b) const {
+    auto in = [&](std::int64_t c, int d) { return std::clamp(c, lo[d], lo[d] + size[d] - 1); };
+    return {{in(at(a.x), 0), in(at(a.y), 1), in(at(a.z), 2)}, {in(at(b.x), 0), in(at(b.y), 1), in(at(b.z), 2)}};
+  }
+  // Calls f(cell index) for every cell of a range.
+  template <class F>
+  void visit(const Range& r, F&& f) const {
+    for (std::int64_t i = r.from[0]; i <= r.to[0]; ++i)
+      for (std::int64_t j = r.from[1]; j <= r.to[1]; ++j)
+        for (std::int64_t k = r.from[2]; k <= r.to[2]; ++k)
+          f(static_cast<std::size_t>(((i - lo[0]) * size[1] + (j - lo[1])) * size[2] + (k - lo[2])));
+  }
+  // The same for the box [a, b].
   template <class F>
   void visit(Vec3 a, Vec3 b, F&& f) const {
-    // Clamped into the block at both ends (a monotone map: boxes that overlap meet a common cell, also
-    // a box that moved out of the block since binning).
-    auto in = [&](std::int64_t c, int d) { return std::clamp(c, lo[d], lo[d] + size[d] - 1); };
-    const std::int64_t from[3] = {in(at(a.x), 0), in(at(a.y), 1), in(at(a.z), 2)};
-    const std::int64_t to[3] = {in(at(b.x), 0), in(at(b.y), 1), in(at(b.z), 2)};
-    for (std::int64_t i = from[0]; i <= to[0]; ++i)
-      for (std::int64_t j = from[1]; j <= to[1]; ++j)
-        for (std::int64_t k = from[2]; k <= to[2]; ++k)
-          f(static_cast<std::size_t>(((i - lo[0]) * size[1] + (j - lo[1])) * size[2] + (k - lo[2])));
+    visit(range(a, b), f);
   }
 };
 
@@ -102,13 +118,17 @@ TriangleGrid bin_triangles(const std::vector<Vec3>& x, const std::vector<Triangl
   }
   const auto ncells = static_cast<std::size_t>(g.size[0] * g.size[1] * g.size[2]);
   g.start.assign(ncells + 1, 0);
+  std::vector<TriangleGrid::Range> ranges(triangles.size());  // each triangle's cells, found once
   for (std::size_t f = 0; f < triangles.size(); ++f)
-    if (finite[f]) g.visit(boxes[f][0], boxes[f][1], [&](std::size_t c) { ++g.start[c + 1]; });
+    if (finite[f]) {
+      ranges[f] = g.range(boxes[f][0], boxes[f][1]);
+      g.visit(ranges[f], [&](std::size_t c) { ++g.start[c + 1]; });
+    }
   for (std::size_t c = 0; c < ncells; ++c) g.start[c + 1] += g.start[c];
   g.items.resize(g.start[ncells]);
   std::vector<std::uint32_t> fill(g.start.begin(), g.start.end() - 1);
   for (std::size_t f = 0; f < triangles.size(); ++f)
-    if (finite[f]) g.visit(boxes[f][0], boxes[f][1], [&](std::size_t c) { g.items[fill[c]++] = static_cast<std::uint32_t>(f); });
+    if (finite[f]) g.visit(ranges[f], [&](std::size_t c) { g.items[fill[c]++] = static_cast<std::uint32_t>(f); });
   return g;
 }
 
