@@ -37,11 +37,28 @@ struct Remesher {
   std::vector<std::int32_t> scratch, around;  // ring() output; a copy kept while scratch is reused
   bool ring_closed = false;                   // find_halfedge's ring in scratch is a closed fan
 
-  static std::int32_t face_of(std::int32_t h) { return h / 3; }
-  static std::int32_t next(std::int32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
-  static std::int32_t prev(std::int32_t h) { return h - h % 3 + (h % 3 + 2) % 3; }
-  std::uint32_t from(std::int32_t h) const { return f[static_cast<std::size_t>(h / 3)][static_cast<std::size_t>(h % 3)]; }
-  std::uint32_t to(std::int32_t h) const { return f[static_cast<std::size_t>(h / 3)][static_cast<std::size_t>((h % 3 + 1) % 3)]; }
+  // Half-edge arithmetic, in unsigned arithmetic for the valid (non-negative) half-edges: a division by 3
+  // is then one multiplication and a shift. next(kNone) and face_of(kNone) keep their signed values.
+  static std::int32_t face_of(std::int32_t h) {
+    return h >= 0 ? static_cast<std::int32_t>(static_cast<std::uint32_t>(h) / 3u) : h / 3;
+  }
+  static std::int32_t next(std::int32_t h) {
+    if (h < 0) return h - h % 3 + (h % 3 + 1) % 3;
+    return static_cast<std::uint32_t>(h) % 3u == 2u ? h - 2 : h + 1;
+  }
+  static std::int32_t prev(std::int32_t h) {
+    if (h < 0) return h - h % 3 + (h % 3 + 2) % 3;
+    return static_cast<std::uint32_t>(h) % 3u == 0u ? h + 2 : h - 1;
+  }
+  std::uint32_t from(std::int32_t h) const {
+    const auto u = static_cast<std::uint32_t>(h);
+    return f[u / 3u][u % 3u];
+  }
+  std::uint32_t to(std::int32_t h) const {
+    const auto u = static_cast<std::uint32_t>(h);
+    const std::uint32_t c = u % 3u;
+    return f[u / 3u][c == 2u ? 0u : c + 1u];
+  }
   bool guarded(std::int32_t h) const { return con[static_cast<std::size_t>(h)] || opp[static_cast<std::size_t>(h)] == kNone; }
   void link(std::int32_t a, std::int32_t b) {
     if (a != kNone) opp[static_cast<std::size_t>(a)] = b;
