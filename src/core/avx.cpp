@@ -1,4 +1,4 @@
-// The core's AVX kernels (avx_internal.h), compiled with AVX enabled (core/sources.cmake) and called only
+// The core's AVX kernels (avx_internal.h), compiled with AVX enabled (src/CMakeLists.txt) and called only
 // where the CPU has it. This file must use nothing with external linkage that a header defines inline: an
 // AVX copy of such a function could replace the plain one everywhere at link time (hence raw pointers).
 #include "avx_internal.h"

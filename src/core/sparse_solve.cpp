@@ -212,8 +212,8 @@ struct UpLooking {
     std::vector<double> y(static_cast<std::size_t>(n), 0.0), yv;
     std::vector<int> pattern(static_cast<std::size_t>(n)), tags(static_cast<std::size_t>(n), 0), nz(static_cast<std::size_t>(n), 0);
     std::vector<const double*> columns, inner;
-    std::vector<int> block_rows;
     constexpr int kBlock = 16;
+    std::vector<int> block_rows(static_cast<std::size_t>(kBlock));
     for (int k = 0; k < n; ++k) {
       // Row k's pattern, in topological order.
       y[static_cast<std::size_t>(k)] = 0.0;
@@ -264,7 +264,6 @@ struct UpLooking {
         yv.resize(static_cast<std::size_t>(run));
         columns.resize(static_cast<std::size_t>(run));
         inner.resize(static_cast<std::size_t>(run));
-        block_rows.resize(static_cast<std::size_t>(kBlock));
         const int i0 = pattern[static_cast<std::size_t>(top)];
         for (int b0 = 0; b0 < run; b0 += kBlock) {
           const int b1 = std::min(run, b0 + kBlock);
