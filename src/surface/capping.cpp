@@ -235,7 +235,7 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
       CGAL::refine_Delaunay_mesh_2(
           cdt, GradedCriteria(options.edge, options.far_scale, options.near_edges, options.ramp_edges, boundary_distance), true);
     else if (options.edge > 0)
-      CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125, options.edge), true);
+      CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125, options.edge * std::max(1.0, options.uniform_scale)), true);
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
       if (original.count(v) || cdt.are_there_incident_constraints(v)) continue;
       const Vec2 p{v->point().x(), v->point().y()};

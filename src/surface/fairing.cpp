@@ -141,7 +141,8 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
   for (std::size_t v = 0; v < nv; ++v) {
     if (ring_size(v) == 0 || boundary[v]) continue;
     const bool shape = !keep_shape.empty() && keep_shape[v];
-    const double w = shape ? std::sqrt(std::max(0.0, options.shape_weight)) : 1.0;
+    double w = shape ? std::sqrt(std::max(0.0, options.shape_weight)) : 1.0;
+    if (!options.row_scale.empty()) w *= options.row_scale[v];
     const double inv = 1.0 / static_cast<double>(ring_size(v));
     std::array<double, 3> c{0, 0, 0};
     bool touches = false;

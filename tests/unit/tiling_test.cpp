@@ -287,6 +287,46 @@ TEST(Capping, DomeHeightsFollowTheExactDistanceToTheLoops) {
   }
 }
 
+// CapOptions::uniform_scale: CGAL's size bound caps each triangle's longest edge, so a uniform interior
+// at bound `edge` has a mean edge near 0.7 edge; at √2 edges the mean is near `edge`, with about half the
+// points.
+TEST(Capping, UniformScaleGivesAMeanEdgeNearTheEdgeLength) {
+  const auto outer = c4d::canonical_polygon(ellipse(25, 20, 140), true);
+  const auto hole = c4d::canonical_polygon(ellipse(10, 8, 56), false);
+  auto mean_interior_edge = [&](const c4d::CapMesh& cap) {
+    const std::size_t loop_points = outer.size() + hole.size();
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const auto& t : cap.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+        if (a < loop_points || b < loop_points) continue;
+        sum += c4d::norm(cap.points[a] - cap.points[b]);
+        ++n;
+      }
+    return n > 0 ? sum / static_cast<double>(n) : 0.0;
+  };
+  c4d::CapOptions plain{1.0, 2.0}, scaled{1.0, 2.0};
+  plain.far_scale = scaled.far_scale = 1.0;
+  ASSERT_EQ(plain.uniform_scale, 1.0);
+  scaled.uniform_scale = std::sqrt(2.0);
+  const auto p = c4d::triangulate_cap({outer, hole}, c4d::CapStyle::Rounded, plain);
+  const auto s = c4d::triangulate_cap({outer, hole}, c4d::CapStyle::Rounded, scaled);
+  EXPECT_LT(mean_interior_edge(p), 0.8);
+  EXPECT_GT(mean_interior_edge(s), 0.85);
+  EXPECT_LT(mean_interior_edge(s), 1.15);
+  EXPECT_LT(s.points.size(), 0.65 * static_cast<double>(p.points.size()));
+  double area = 0.0;
+  for (const auto& t : s.triangles) area += 0.5 * c4d::cross(s.points[t[1]] - s.points[t[0]], s.points[t[2]] - s.points[t[0]]);
+  EXPECT_NEAR(area, c4d::signed_area(outer) + c4d::signed_area(hole), 1e-6);
+  // Below 1 (or NaN) it is 1: the bound never falls below `edge`.
+  for (double u : {0.5, std::numeric_limits<double>::quiet_NaN()}) {
+    c4d::CapOptions o = plain;
+    o.uniform_scale = u;
+    EXPECT_EQ(c4d::triangulate_cap({outer, hole}, c4d::CapStyle::Rounded, o).points, p.points) << u;
+  }
+}
+
 // CapOptions::far_scale: next to the loops the interior points are as dense as with a uniform bound
 // (the fairing's smoothness across the contour depends on them); far from them, fewer.
 TEST(Capping, InteriorCoarsensAwayFromTheLoops) {

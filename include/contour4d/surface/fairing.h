@@ -13,6 +13,10 @@ namespace c4d {
 //! Options of fairing.
 struct FairingOptions {
   double shape_weight = 1.0;  //!< weight of the shape-keeping terms (vertices with keep_shape set) against the smoothness terms
+  std::vector<double> row_scale;  //!< per vertex, a factor on its term's row (its weight: the factor squared); empty:
+                                  //!< 1 everywhere. The umbrella Laplacian grows with the edge length squared, so
+                                  //!< a region meshed s times coarser weighs s² as much per area: 1/s there keeps
+                                  //!< the balance (reconstruct_frame's ring caps)
 };
 
 //! Moves the free vertices (fixed[v] == 0) of `mesh` to minimise Σ_v w_v |L(x)_v − b_v|², L the
@@ -22,7 +26,7 @@ struct FairingOptions {
 //! Terms of boundary vertices (open ends) are left out. Fixed vertices do not move at all.
 //! One sparse LDLᵀ factorisation (Eigen), three right-hand sides. Returns false (mesh unchanged)
 //! when the system cannot be factorised, e.g. a component without fixed vertex.
-//! \pre fixed and keep_shape are empty or have one entry per vertex.
+//! \pre fixed, keep_shape and options.row_scale are empty or have one entry per vertex.
 bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const std::vector<char>& keep_shape,
                      const FairingOptions& options = {});
 
