@@ -634,7 +634,8 @@ bool remesh_isotropic_fast(TriangleMesh& mesh, std::vector<std::array<std::uint3
                            std::vector<char>& fixed, double edge, int iterations) {
   Remesher r;
   if (!r.build(mesh, constrained, fixed)) return false;
-  const SurfaceWalk ref = make_surface_walk(mesh, r.face_patch);
+  SurfaceWalk ref = make_surface_walk(mesh, r.face_patch);
+  add_neighbour_lists(ref);  // every vertex is projected in every round
   r.ref = &ref;
   const double low = 4.0 / 5.0 * edge, high = 4.0 / 3.0 * edge;
   for (int it = 0; it < iterations; ++it) {

@@ -68,6 +68,40 @@ SurfaceWalk make_surface_walk(TriangleMesh surface, std::vector<std::int32_t> pa
   return w;
 }
 
+namespace {
+
+// A walk step's candidates around triangle t: the triangles of its corners in order, but t itself, those
+// of another patch and those around an earlier corner (met there already).
+template <class F>
+void step_candidates(const SurfaceWalk& walk, std::uint32_t t, F&& f) {
+  const Triangle here = walk.triangles[t];
+  const std::int32_t pid = walk.patch[t];
+  for (int i = 0; i < 3; ++i)
+    for (std::uint32_t k = walk.start[here[i]]; k < walk.start[here[i] + 1]; ++k) {
+      const std::uint32_t cand = walk.tris[k];
+      if (cand == t || walk.patch[cand] != pid) continue;
+      // A triangle across an edge is also around an earlier corner: measured there already (a second
+      // measure is never strictly nearer, so skipping it changes nothing).
+      const Triangle& ct = walk.triangles[cand];
+      bool seen = false;
+      for (int e = 0; e < i; ++e) seen = seen || ct[0] == here[e] || ct[1] == here[e] || ct[2] == here[e];
+      if (!seen) f(cand);
+    }
+}
+
+}  // namespace
+
+void add_neighbour_lists(SurfaceWalk& walk) {
+  const std::size_t nt = walk.triangles.size();
+  walk.near_start.assign(nt + 1, 0);
+  walk.near.clear();
+  walk.near.reserve(13 * nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    step_candidates(walk, static_cast<std::uint32_t>(t), [&](std::uint32_t c) { walk.near.push_back(c); });
+    walk.near_start[t + 1] = static_cast<std::uint32_t>(walk.near.size());
+  }
+}
+
 std::int32_t walk_start(const SurfaceWalk& walk, std::uint32_t v) {
   if (v + 1 >= walk.start.size() || walk.start[v] == walk.start[v + 1]) return -1;
   return static_cast<std::int32_t>(walk.tris[walk.start[v]]);
@@ -83,34 +117,30 @@ Vec3 walk_closest(const SurfaceWalk& walk, const Vec3& p, std::int32_t& hint) {
   Vec3 best_q;
   double best = dist2(hint, &best_q);
   double reach = std::sqrt(best);
-  const std::int32_t pid = walk.patch[static_cast<std::size_t>(hint)];
+  const bool listed = !walk.near_start.empty();
   for (int step = 0; step < 256; ++step) {
     std::int32_t next = hint;
-    const Triangle here = walk.triangles[static_cast<std::size_t>(hint)];
-    for (int i = 0; i < 3; ++i)
-      for (std::uint32_t k = walk.start[here[i]]; k < walk.start[here[i] + 1]; ++k) {
-        const auto cand = static_cast<std::int32_t>(walk.tris[k]);
-        if (cand == hint || walk.patch[static_cast<std::size_t>(cand)] != pid) continue;
-        // A triangle across an edge is also around an earlier corner: measured there already (a
-        // second measure is never strictly nearer, so skipping it changes nothing).
-        const Triangle& ct = walk.triangles[static_cast<std::size_t>(cand)];
-        bool seen = false;
-        for (int e = 0; e < i; ++e) seen = seen || ct[0] == here[e] || ct[1] == here[e] || ct[2] == here[e];
-        if (seen) continue;
-        // A triangle whose ball lies farther than the best distance cannot be nearer (the margin
-        // covers the rounding of this test): not measured.
-        const auto& ball = walk.balls[static_cast<std::size_t>(cand)];
-        const double bx = p.x - ball[0], by = p.y - ball[1], bz = p.z - ball[2], lim = ball[3] + reach;
-        if (bx * bx + by * by + bz * bz > (1.0 + 1e-9) * lim * lim) continue;
-        Vec3 q;
-        const double d = dist2(cand, &q);
-        if (d < best) {
-          best = d;
-          reach = std::sqrt(best);
-          best_q = q;
-          next = cand;
-        }
+    // A triangle whose ball lies farther than the best distance cannot be nearer (the margin covers the
+    // rounding of this test): not measured.
+    auto measure = [&](std::uint32_t cand) {
+      const auto& ball = walk.balls[cand];
+      const double bx = p.x - ball[0], by = p.y - ball[1], bz = p.z - ball[2], lim = ball[3] + reach;
+      if (bx * bx + by * by + bz * bz > (1.0 + 1e-9) * lim * lim) return;
+      Vec3 q;
+      const double d = dist2(static_cast<std::int32_t>(cand), &q);
+      if (d < best) {
+        best = d;
+        reach = std::sqrt(best);
+        best_q = q;
+        next = static_cast<std::int32_t>(cand);
       }
+    };
+    const auto h = static_cast<std::uint32_t>(hint);
+    if (listed) {
+      for (std::uint32_t k = walk.near_start[h]; k < walk.near_start[h + 1]; ++k) measure(walk.near[k]);
+    } else {
+      step_candidates(walk, h, measure);
+    }
     if (next == hint) break;
     hint = next;
   }

@@ -83,6 +83,31 @@ TEST(SurfaceWalk, NearbyQueriesFindTheClosestPointOfTheSurface) {
   }
 }
 
+// add_neighbour_lists: the same answers and end triangles, bit for bit, as the search around the corners,
+// with two patches (the torus's halves) and queries up to an edge away from their start.
+TEST(SurfaceWalk, NeighbourListsGiveTheSameWalks) {
+  const TriangleMesh m = torus(10.0, 3.0, 48, 20);
+  std::vector<std::int32_t> patch(m.triangles.size());
+  for (std::size_t t = 0; t < patch.size(); ++t) patch[t] = t < patch.size() / 2 ? 0 : 1;
+  const c4d::SurfaceWalk plain = c4d::make_surface_walk(m, patch);
+  c4d::SurfaceWalk listed = plain;
+  c4d::add_neighbour_lists(listed);
+  ASSERT_EQ(listed.near_start.size(), m.triangles.size() + 1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> off(-1.0, 1.0);
+  std::uniform_int_distribution<std::uint32_t> pick(0, static_cast<std::uint32_t>(m.positions.size() - 1));
+  for (int k = 0; k < 1000; ++k) {
+    const std::uint32_t v = pick(rng);
+    const Vec3 p = m.positions[v] + Vec3{off(rng), off(rng), off(rng)};
+    std::int32_t h1 = c4d::walk_start(plain, v), h2 = h1;
+    const Vec3 a = c4d::walk_closest(plain, p, h1), b = c4d::walk_closest(listed, p, h2);
+    EXPECT_EQ(h1, h2) << "query " << k;
+    EXPECT_EQ(a.x, b.x);
+    EXPECT_EQ(a.y, b.y);
+    EXPECT_EQ(a.z, b.z);
+  }
+}
+
 // The walk stays within the patch it starts in, even where the other patch is nearer.
 TEST(SurfaceWalk, StaysInItsPatch) {
   TriangleMesh m;  // two squares side by side, split into triangles: x in [0, 1] and [1, 2]

@@ -23,10 +23,19 @@ struct SurfaceWalk {
   std::vector<std::int32_t> patch;          //!< per triangle
   std::vector<std::uint32_t> start, tris;   //!< triangles of vertex v: tris[start[v] .. start[v + 1])
   std::vector<std::array<double, 4>> balls; //!< per triangle: a ball holding it (centroid, radius)
+  //! Optional (add_neighbour_lists): per triangle t, the triangles a walk step from t measures, in its
+  //! order: near[near_start[t] .. near_start[t + 1]). Empty: the step finds them around t's corners.
+  std::vector<std::uint32_t> near_start, near;
 };
 
 //! The walk over `surface` (taken over); `patch` has one entry per triangle, or is empty (one patch).
 SurfaceWalk make_surface_walk(TriangleMesh surface, std::vector<std::int32_t> patch = {});
+
+//! Lists, for every triangle, the triangles that a walk step from it measures (those sharing a corner
+//! with it, in its patch, each once, in the step's order), so that walks skip the search around the
+//! corners: the same answers, bit for bit. Worth it where many walks run over one surface (the
+//! remeshing projects every vertex in every round).
+void add_neighbour_lists(SurfaceWalk& walk);
 
 //! The closest point to p found by walking from triangle `hint` (a valid triangle index), which is
 //! updated to the triangle of the answer: pass it again for the next nearby query.
