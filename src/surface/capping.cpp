@@ -221,9 +221,11 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
   // Pass 1: interior points from the Delaunay mesher.
   const BoundaryDistance boundary_distance(loops);
   std::vector<Vec2> interior;
+  CDT cdt_loops;  // the loops' triangulation, again the start of pass 2 (a copy: the same faces)
   {
     CDT cdt;
     insert_loops(cdt, loops);
+    cdt_loops = cdt;
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) v->info() = 0;
     mark_domain(cdt);
     std::unordered_set<CDT::Vertex_handle, CGAL::Handle_hash_function> original;  // membership only
@@ -262,8 +264,7 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
   }
 
   // Pass 2: loops as constraints plus the interior points.
-  CDT cdt;
-  insert_loops(cdt, loops);
+  CDT& cdt = cdt_loops;
   for (const Vec2& p : interior) {
     const auto before = cdt.number_of_vertices();
     auto v = cdt.insert(Point(p.x, p.y));
