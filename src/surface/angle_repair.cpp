@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -136,7 +137,7 @@ TriangleGrid bin_triangles(const std::vector<Vec3>& x, const std::vector<Triangl
 // places stay listed: a candidate too many is only tested).
 using MovedCells = std::unordered_map<std::size_t, std::vector<std::uint32_t>>;
 
-void list_moved(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles, const std::vector<std::uint32_t>& fs,
+void list_moved(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles, std::span<const std::uint32_t> fs,
                 const TriangleGrid& grid, MovedCells& moved) {
   for (std::uint32_t f : fs) {
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
@@ -152,7 +153,7 @@ void list_moved(const std::vector<Vec3>& x, const std::vector<Triangle>& triangl
 // True when one of `fs` (the triangles of a vertex at its new position) intersects a triangle of
 // the grid or of `moved` other than through a shared vertex or edge.
 bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
-                     const std::vector<std::uint32_t>& fs, const TriangleGrid& grid, const MovedCells& moved) {
+                     std::span<const std::uint32_t> fs, const TriangleGrid& grid, const MovedCells& moved) {
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (std::uint32_t f : fs)
     for (std::uint32_t w : triangles[f]) grow(lo, hi, x[w]);
@@ -165,7 +166,7 @@ bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& tr
   });
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
-  return intersects_any(x, triangles, fs, near);
+  return intersects_any(x, triangles, std::vector<std::uint32_t>(fs.begin(), fs.end()), near);
 }
 
 // The eight steps of the search (cos, sin of d·π/4), worked out once.
@@ -181,8 +182,22 @@ const std::array<std::array<double, 2>, 8> kCompass = [] {
 // Below this smallest angle (degrees) a triangle is a sliver (see optimise).
 constexpr double kSliverDeg = 5.0;
 
+// The triangles of each vertex, in increasing order (CSR).
+struct VertexTriangles {
+  std::vector<std::uint32_t> start, items;
+  VertexTriangles(std::size_t nv, const std::vector<Triangle>& triangles) : start(nv + 1, 0), items(3 * triangles.size()) {
+    for (const Triangle& t : triangles)
+      for (std::uint32_t v : t) ++start[v + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t f = 0; f < triangles.size(); ++f)
+      for (std::uint32_t v : triangles[f]) items[fill[v]++] = static_cast<std::uint32_t>(f);
+  }
+  std::span<const std::uint32_t> operator[](std::size_t v) const { return {items.data() + start[v], items.data() + start[v + 1]}; }
+};
+
 std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
-                     const std::vector<std::vector<std::uint32_t>>& ring, const std::vector<char>& fixed,
+                     const VertexTriangles& ring, const std::vector<char>& fixed,
                      const SurfaceSnap& snap, const AngleRepairOptions& options) {
   const double cos_fold = 0.5;  // a ring triangle may turn by at most 60°
   std::size_t moves = 0;
@@ -210,7 +225,7 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
     if (todo.empty()) break;
     std::size_t pass_moves = 0;
     for (std::uint32_t v : todo) {
-      const auto& fs = ring[v];
+      const std::span<const std::uint32_t> fs = ring[v];
       if (fs.empty()) continue;
       std::vector<Vec3> n0;
       Vec3 n{};
@@ -312,9 +327,7 @@ std::size_t repair_small_angles(std::vector<Vec3>& positions, const std::vector<
                                 const std::vector<char>& fixed, const SurfaceSnap& snap,
                                 const AngleRepairOptions& options) {
   const std::size_t nv = positions.size();
-  std::vector<std::vector<std::uint32_t>> ring(nv);  // triangles of each vertex
-  for (std::size_t f = 0; f < triangles.size(); ++f)
-    for (std::uint32_t v : triangles[f]) ring[v].push_back(static_cast<std::uint32_t>(f));
+  const VertexTriangles ring(nv, triangles);
   std::vector<char> frozen(fixed.begin(), fixed.end());
   frozen.resize(nv, 0);
   return optimise(positions, triangles, ring, frozen, snap, options);
