@@ -833,7 +833,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
           // region grows with its edge length squared: rows of a coarser interior are scaled back by
           // 1 / uniform_scale, keeping the dome's stiffness against the walls as at the bound of 1 edge
           // (else the dome comes out lower: torus volume −0.46 -> −1.15 %; with the scale −0.38 %).
-          if (!fillable) {
+          if (cop.uniform_scale != 1.0) {
             row_scale.resize(b.positions.size(), 1.0);
             row_scale.back() = 1.0 / cop.uniform_scale;
           }
