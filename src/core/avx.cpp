@@ -50,8 +50,52 @@ void ldlt_rows_below_avx(double* y, const int* rows, int below, const double* co
     y[rows[q]] = a;
   }
 }
+
+void ldlt_substitute3_avx(const int* outer, const int* counts, const int* inner, const double* value, long nnz,
+                          const double* d, long n, double* Y) {
+  auto below = [&](long i, long& k0, long& k1) {
+    k0 = outer[i];
+    k1 = counts ? k0 + counts[i] : outer[i + 1];
+    while (k0 < k1 && inner[k0] <= i) ++k0;
+  };
+  if (nnz > 0)
+    for (long i = 0; i < n; ++i) {  // L y = y, column i scattered
+      long k0, k1;
+      below(i, k0, k1);
+      double* yi = Y + 4 * i;
+      if (yi[0] != 0.0 && yi[1] != 0.0 && yi[2] != 0.0) {
+        const __m256d t = _mm256_loadu_pd(yi);
+        for (long k = k0; k < k1; ++k) {
+          double* r = Y + 4 * static_cast<long>(inner[k]);
+          _mm256_storeu_pd(r, _mm256_sub_pd(_mm256_loadu_pd(r), _mm256_mul_pd(t, _mm256_set1_pd(value[k]))));
+        }
+      } else {  // Eigen skips a column whose entry is zero (so that −0 stays −0)
+        const double t[3] = {yi[0], yi[1], yi[2]};
+        for (long k = k0; k < k1; ++k) {
+          double* r = Y + 4 * static_cast<long>(inner[k]);
+          for (int c = 0; c < 3; ++c)
+            if (t[c] != 0.0) r[c] -= t[c] * value[k];
+        }
+      }
+    }
+  if (d)
+    for (long i = 0; i < n; ++i) {
+      const double inv = 1.0 / d[i];
+      for (int c = 0; c < 3; ++c) Y[4 * i + c] = inv * Y[4 * i + c];
+    }
+  if (nnz > 0)
+    for (long i = n - 1; i >= 0; --i) {  // Lᵀ y = y, column i gathered
+      long k0, k1;
+      below(i, k0, k1);
+      __m256d t = _mm256_loadu_pd(Y + 4 * i);
+      for (long k = k0; k < k1; ++k)
+        t = _mm256_sub_pd(t, _mm256_mul_pd(_mm256_set1_pd(value[k]), _mm256_loadu_pd(Y + 4 * static_cast<long>(inner[k]))));
+      _mm256_storeu_pd(Y + 4 * i, t);
+    }
+}
 #else
 bool avx_available() { return false; }
+void ldlt_substitute3_avx(const int*, const int*, const int*, const double*, long, const double*, long, double*) {}
 void ldlt_rows_below_avx(double*, const int*, int, const double* const*, const double*, int) {}
 #endif
 

@@ -12,4 +12,11 @@ bool avx_available();
 //! then a subtraction (no fused multiply-add). \pre avx_available().
 void ldlt_rows_below_avx(double* y, const int* rows, int below, const double* const* columns, const double* yv, int run);
 
+//! y = L⁻ᵀ D⁻¹ L⁻¹ y for three right-hand sides (sparse_solve.cpp's substitute<3>, the same operations in
+//! the same order): Y holds row i's three values at Y[4i..4i+2] (Y[4i+3]: any finite value, overwritten),
+//! L is compressed column (`counts` null) or not, its column i's entries above the diagonal skipped;
+//! d: D, or null for none. \pre avx_available().
+void ldlt_substitute3_avx(const int* outer, const int* counts, const int* inner, const double* value, long nnz,
+                          const double* d, long n, double* Y);
+
 }  // namespace c4d::detail
