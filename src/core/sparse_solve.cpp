@@ -79,8 +79,9 @@ void substitute(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& d, 
 
 // x = P⁻¹ L⁻ᵀ D⁻¹ L⁻¹ P b (SimplicialLDLT::_solve_impl's order; P empty: none).
 template <class Perm>
+// lanes: 2 or 1 keeps three right-hand sides off the AVX path (SparseLdlt's lanes, for the tests).
 Eigen::MatrixXd permuted_solve(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& d, const Perm& P,
-                               const Perm& Pinv, const Eigen::MatrixXd& b) {
+                               const Perm& Pinv, const Eigen::MatrixXd& b, int lanes = 0) {
   using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const Eigen::Index n = b.rows(), nc = b.cols();
   Rows y(n, nc);  // the columns side by side: one row per unknown
@@ -90,7 +91,7 @@ Eigen::MatrixXd permuted_solve(const Eigen::SparseMatrix<double>& L, const Eigen
     y = b;
   }
   static const bool avx = detail::avx_available();
-  if (nc == 3 && avx) {
+  if (nc == 3 && avx && lanes != 1 && lanes != 2) {
     // Each row's three values in a four-wide row (the fourth zero), one AVX instruction per update.
     std::vector<double> y4(static_cast<std::size_t>(4 * n), 0.0);
     for (Eigen::Index i = 0; i < n; ++i)
@@ -357,7 +358,7 @@ bool SparseLdlt::compute(const Eigen::SparseMatrix<double>& a) {
 }
 
 Eigen::MatrixXd SparseLdlt::solve(const Eigen::MatrixXd& b) const {
-  return permuted_solve(l_, d_, p_, pinv_, b);
+  return permuted_solve(l_, d_, p_, pinv_, b, lanes_);
 }
 
 }  // namespace c4d

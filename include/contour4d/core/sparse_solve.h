@@ -33,7 +33,8 @@ class SparseLdlt {
  public:
   //! `lanes`: rows per SIMD step of the factorisation's chain updates: 0 the widest the CPU runs (4 with
   //! AVX, else 2), 2, 4 (without AVX: 2) or 1 (Eigen's loop throughout); the factor is the same bit for
-  //! bit (tested), the time not.
+  //! bit (tested), the time not. With AVX, solve() updates three right-hand sides per instruction
+  //! unless lanes is 1 or 2 (the same result).
   explicit SparseLdlt(int lanes = 0) : lanes_(lanes) {}
   //! Factors the symmetric matrix whose lower triangle `a` holds (square, column-major; the upper
   //! triangle is not read). False when the factorisation fails (info() says why).
