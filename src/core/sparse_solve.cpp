@@ -77,38 +77,35 @@ void substitute(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& d, 
   }
 }
 
-// x = P⁻¹ L⁻ᵀ D⁻¹ L⁻¹ P b (SimplicialLDLT::_solve_impl's order; P empty: none).
+// x = P⁻¹ L⁻ᵀ D⁻¹ L⁻¹ P b (SimplicialLDLT::_solve_impl's order; P empty: none). Three right-hand sides
+// take the AVX path where the CPU has it, unless lanes is 1 or 2 (SparseLdlt's lanes, for the tests).
 template <class Perm>
-// lanes: 2 or 1 keeps three right-hand sides off the AVX path (SparseLdlt's lanes, for the tests).
 Eigen::MatrixXd permuted_solve(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& d, const Perm& P,
                                const Perm& Pinv, const Eigen::MatrixXd& b, int lanes = 0) {
   using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const Eigen::Index n = b.rows(), nc = b.cols();
-  Rows y(n, nc);  // the columns side by side: one row per unknown
-  if (P.size() > 0) {
-    for (Eigen::Index i = 0; i < n; ++i) y.row(P.indices()(i)) = b.row(i);
-  } else {
-    y = b;
-  }
   static const bool avx = detail::avx_available();
-  if (nc == 3 && avx && lanes != 1 && lanes != 2) {
-    // Each row's three values in a four-wide row (the fourth zero), one AVX instruction per update.
-    std::vector<double> y4(static_cast<std::size_t>(4 * n), 0.0);
-    for (Eigen::Index i = 0; i < n; ++i)
-      for (Eigen::Index c = 0; c < 3; ++c) y4[static_cast<std::size_t>(4 * i + c)] = y(i, c);
+  const bool four_wide = nc == 3 && avx && lanes != 1 && lanes != 2;
+  // The columns side by side, one row per unknown; on the AVX path a fourth, zero column makes each row
+  // one four-wide load.
+  Rows y = Rows::Zero(n, four_wide ? 4 : nc);
+  if (P.size() > 0) {
+    for (Eigen::Index i = 0; i < n; ++i) y.row(P.indices()(i)).head(nc) = b.row(i);
+  } else {
+    y.leftCols(nc) = b;
+  }
+  if (four_wide)
     detail::ldlt_substitute3_avx(L.outerIndexPtr(), L.innerNonZeroPtr(), L.innerIndexPtr(), L.valuePtr(), L.nonZeros(),
-                                 d.size() > 0 ? d.data() : nullptr, n, y4.data());
-    for (Eigen::Index i = 0; i < n; ++i)
-      for (Eigen::Index c = 0; c < 3; ++c) y(i, c) = y4[static_cast<std::size_t>(4 * i + c)];
-  } else if (nc == 3)
+                                 d.size() > 0 ? d.data() : nullptr, n, y.data());
+  else if (nc == 3)
     substitute<3>(L, d, y.data(), n, nc);
   else
     substitute<0>(L, d, y.data(), n, nc);
   Eigen::MatrixXd x(n, nc);
   if (P.size() > 0) {
-    for (Eigen::Index i = 0; i < n; ++i) x.row(Pinv.indices()(i)) = y.row(i);
+    for (Eigen::Index i = 0; i < n; ++i) x.row(Pinv.indices()(i)) = y.row(i).head(nc);
   } else {
-    x = y;
+    x = y.leftCols(nc);
   }
   return x;
 }
