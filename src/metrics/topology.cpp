@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -19,6 +20,10 @@
 #include <optional>
 #include <set>
 #include <tuple>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
@@ -104,17 +109,24 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
       if (valid_triangle(t, nv))
         for (int k = 0; k < 3; ++k) opposite[fill[t[k]]++] = {t[(k + 1) % 3], t[(k + 2) % 3]};
   }
-  std::vector<std::uint32_t> ring, sorted;
+  std::vector<std::uint32_t> ring;
+  std::vector<Kernel::Point_2> flat;  // the ring projected, its first point again at the end
   for (std::size_t v = 0; v < nv; ++v) {
     if (wanted != nullptr && !(*wanted)[v]) continue;
     const std::uint32_t b = start[v], e = start[v + 1];
     const std::size_t k = e - b;
     if (k < 3 || !is_finite(mesh.positions[v])) continue;
-    // The fan's cycle: from the first edge, each next edge starts where the last one ended.
+    // The fan's cycle: from the first edge, each next edge starts where the last one ended. Every
+    // vertex after the first has one edge out, so a neighbour met twice means the walk came back to
+    // the first one early (and then cycles through the same neighbours): no fan.
     ring.assign(1, opposite[b][0]);
     std::uint32_t at = opposite[b][1];
     bool closed = true;
     for (std::size_t step = 1; step < k && closed; ++step) {
+      if (at == ring[0]) {
+        closed = false;
+        break;
+      }
       ring.push_back(at);
       std::size_t found = 0, next = 0;
       for (std::uint32_t r = b; r < e; ++r)
@@ -126,14 +138,12 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
       if (closed) at = opposite[next][1];
     }
     if (!closed || at != ring[0]) continue;
-    sorted.assign(ring.begin(), ring.end());  // each neighbour once
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+    ring.push_back(ring[0]);  // ring[i + 1] follows ring[i] for every i < k
     const Vec3 pv = mesh.positions[v];
     Vec3 normal{};
     bool finite = true;
     for (std::size_t i = 0; i < k; ++i) {
-      const Vec3 pa = mesh.positions[ring[i]], pb = mesh.positions[ring[(i + 1) % k]];
+      const Vec3 pa = mesh.positions[ring[i]], pb = mesh.positions[ring[i + 1]];
       finite = finite && is_finite(pa);
       normal += cross(pa - pv, pb - pv);
     }
@@ -153,10 +163,12 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
     const Kernel::Point_2 o = plane(pv);
     // Upper half-turn: angles in [0, pi) around o.
     auto upper = [&](const Kernel::Point_2& a) { return a.y() > o.y() || (a.y() == o.y() && a.x() > o.x()); };
+    flat.clear();
+    for (std::size_t i = 0; i <= k; ++i) flat.push_back(plane(mesh.positions[ring[i]]));
     bool good = true;
     int turns = 0;
     for (std::size_t i = 0; i < k && good; ++i) {
-      const Kernel::Point_2 a = plane(mesh.positions[ring[i]]), c = plane(mesh.positions[ring[(i + 1) % k]]);
+      const Kernel::Point_2 &a = flat[i], &c = flat[i + 1];
       good = CGAL::orientation(o, a, c) == CGAL::LEFT_TURN;
       if (!upper(a) && upper(c)) ++turns;
     }
@@ -176,6 +188,13 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
 // anyway: two boxes with an equal key other than kNoKey (the caller: a shared vertex whose fan is
 // untangled) are not reported.
 constexpr std::uint32_t kNoKey = 0xFFFFFFFFu;
+
+// std::nextafter(f, -infinity) for f not NaN (the largest float below f), without a library call.
+inline float next_float_down(float f) {
+  const auto u = std::bit_cast<std::uint32_t>(f);
+  const float below = std::bit_cast<float>(f > 0.0f ? u - 1 : u + 1);
+  return f == 0.0f ? -std::numeric_limits<float>::denorm_min() : below;
+}
 template <class F>
 bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vector<char>* flagged,
                             const std::vector<std::array<std::uint32_t, 3>>& keys, F&& f) {
@@ -252,31 +271,31 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
       marked[m] = t < flagged->size() && (*flagged)[t] ? 1 : 0;
     }
   // Each cell's boxes side by side in single precision, rounded outwards (so a pair of closed boxes
-  // that overlap also overlaps here), with their keys: the pair loop reads its cell in order, and only
-  // the pairs that pass go on to the exact test in double precision below.
-  struct Loose {
-    float lo[3], hi[3];
-    std::array<std::uint32_t, 3> key;
-  };
-  std::vector<Loose> by_box(n);
-  for (std::size_t m = 0; m < n; ++m) {
+  // that overlap also overlaps here), with their keys, one array per coordinate (lower x, y, z, upper
+  // x, y, z, then the three keys): the pair loop reads its cell in order, four boxes per SSE2 compare
+  // where the CPU has it, and only the pairs that pass go on to the exact test in double precision below.
+  std::vector<float> loose_by_box(6 * n);
+  for (std::size_t m = 0; m < n; ++m)
     for (int d = 0; d < 3; ++d) {
       const double l = box[m][d], h = box[m][d + 3];
       float fl = static_cast<float>(l), fh = static_cast<float>(h);
-      if (static_cast<double>(fl) > l) fl = std::nextafter(fl, -std::numeric_limits<float>::infinity());
-      if (static_cast<double>(fh) < h) fh = std::nextafter(fh, std::numeric_limits<float>::infinity());
-      by_box[m].lo[d] = fl;
-      by_box[m].hi[d] = fh;
+      fl = static_cast<double>(fl) > l ? next_float_down(fl) : fl;
+      fh = static_cast<double>(fh) < h ? -next_float_down(-fh) : fh;
+      loose_by_box[6 * m + static_cast<std::size_t>(d)] = fl;
+      loose_by_box[6 * m + 3 + static_cast<std::size_t>(d)] = fh;
     }
-    by_box[m].key = keys[m];
+  const std::size_t ni = items.size();
+  // bounds[d * ni + a]: item a's lower (d < 3) or upper corner; item_keys[k * ni + a]. Three more
+  // entries at the end: the last four-wide loads reach past the last item (their lanes are masked).
+  std::vector<float> bounds(6 * ni + 3);
+  std::vector<std::uint32_t> item_keys(3 * ni + 3);
+  for (std::size_t a = 0; a < ni; ++a) {
+    const std::size_t m = items[a];
+    for (std::size_t d = 0; d < 6; ++d) bounds[d * ni + a] = loose_by_box[6 * m + d];
+    for (std::size_t k = 0; k < 3; ++k) item_keys[k * ni + a] = keys[m][k];
   }
-  std::vector<Loose> loose(items.size());
-  for (std::size_t a = 0; a < items.size(); ++a) loose[a] = by_box[items[a]];
-  auto shares_key = [](const std::array<std::uint32_t, 3>& x, const std::array<std::uint32_t, 3>& y) {
-    for (std::uint32_t k : x)
-      if (k != kNoKey && (k == y[0] || k == y[1] || k == y[2])) return true;
-    return false;
-  };
+  const float *lo0 = bounds.data(), *lo1 = lo0 + ni, *lo2 = lo1 + ni, *hi0 = lo2 + ni, *hi1 = hi0 + ni, *hi2 = hi1 + ni;
+  const std::uint32_t *key0 = item_keys.data(), *key1 = key0 + ni, *key2 = key1 + ni;
   // The cells in blocks of consecutive indices; each block lists its pairs in the serial loop's order
   // (in parallel where the grid is large), then f sees the blocks' pairs in block order: the calls
   // and their order are those of one loop over the cells, whatever the thread count.
@@ -287,29 +306,60 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
     auto& out = found[block];
     const std::size_t c_end = std::min(ncells, (block + 1) * kCellsPerBlock);
     for (std::size_t c = block * kCellsPerBlock; c < c_end; ++c) {
-      if (start[c + 1] - start[c] < 2) continue;
+      const std::uint32_t e = start[c + 1];
+      if (e - start[c] < 2) continue;
       const auto ck = static_cast<std::int64_t>(c % static_cast<std::size_t>(size[2]));
       const auto cj = static_cast<std::int64_t>((c / static_cast<std::size_t>(size[2])) % static_cast<std::size_t>(size[1]));
       const auto ci = static_cast<std::int64_t>(c / static_cast<std::size_t>(size[2] * size[1]));
-      for (std::uint32_t a = start[c]; a < start[c + 1]; ++a) {
+      for (std::uint32_t a = start[c]; a < e; ++a) {
         const std::uint32_t p = items[a];
-        const Loose lx = loose[a];
         const auto& x = box[p];
         const auto& sx = span[p];
-        for (std::uint32_t b = a + 1; b < start[c + 1]; ++b) {
-          const Loose& ly = loose[b];
-          if (lx.lo[0] > ly.hi[0] || ly.lo[0] > lx.hi[0] || lx.lo[1] > ly.hi[1] || ly.lo[1] > lx.hi[1] ||
-              lx.lo[2] > ly.hi[2] || ly.lo[2] > lx.hi[2])
-            continue;
-          if (shares_key(lx.key, ly.key)) continue;
+        // Item b of the cell whose loose box overlaps a's and shares no key with it.
+        auto exact = [&](std::uint32_t b) {
           const std::uint32_t q = items[b];
           const auto& y = box[q];
-          if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) continue;
-          if (!marked[p] && !marked[q]) continue;
+          if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) return;
+          if (!marked[p] && !marked[q]) return;
           // Met only in the cell of the larger lower corner.
           const auto& sy = span[q];
-          if (std::max(sx[0], sy[0]) != ci || std::max(sx[1], sy[1]) != cj || std::max(sx[2], sy[2]) != ck) continue;
+          if (std::max(sx[0], sy[0]) != ci || std::max(sx[1], sy[1]) != cj || std::max(sx[2], sy[2]) != ck) return;
           out.push_back({std::min(p, q), std::max(p, q)});
+        };
+        const std::uint32_t xk[3] = {key0[a], key1[a], key2[a]};
+        std::uint32_t b = a + 1;
+#if defined(__SSE2__)
+        {
+          const __m128 xl0 = _mm_set1_ps(lo0[a]), xl1 = _mm_set1_ps(lo1[a]), xl2 = _mm_set1_ps(lo2[a]);
+          const __m128 xh0 = _mm_set1_ps(hi0[a]), xh1 = _mm_set1_ps(hi1[a]), xh2 = _mm_set1_ps(hi2[a]);
+          for (; b < e; b += 4) {
+            // Not (x.lo > y.hi or y.lo > x.hi) in any coordinate: the scalar test below, lane by lane.
+            __m128 keep = _mm_and_ps(_mm_cmpngt_ps(xl0, _mm_loadu_ps(hi0 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo0 + b), xh0));
+            keep = _mm_and_ps(keep, _mm_and_ps(_mm_cmpngt_ps(xl1, _mm_loadu_ps(hi1 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo1 + b), xh1)));
+            keep = _mm_and_ps(keep, _mm_and_ps(_mm_cmpngt_ps(xl2, _mm_loadu_ps(hi2 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo2 + b), xh2)));
+            int lanes = _mm_movemask_ps(keep) & (e - b >= 4 ? 15 : (1 << (e - b)) - 1);  // items of the cell only
+            if (lanes == 0) continue;
+            const __m128i y0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key0 + b));
+            const __m128i y1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key1 + b));
+            const __m128i y2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key2 + b));
+            __m128i shared = _mm_setzero_si128();
+            for (std::uint32_t k : xk)
+              if (k != kNoKey) {
+                const __m128i v = _mm_set1_epi32(static_cast<int>(k));
+                shared = _mm_or_si128(shared, _mm_or_si128(_mm_cmpeq_epi32(v, y0), _mm_or_si128(_mm_cmpeq_epi32(v, y1), _mm_cmpeq_epi32(v, y2))));
+              }
+            lanes &= ~_mm_movemask_ps(_mm_castsi128_ps(shared));
+            for (; lanes != 0; lanes &= lanes - 1) exact(b + static_cast<std::uint32_t>(__builtin_ctz(static_cast<unsigned>(lanes))));
+          }
+        }
+#endif
+        for (; b < e; ++b) {  // without SSE2
+          if (lo0[a] > hi0[b] || lo0[b] > hi0[a] || lo1[a] > hi1[b] || lo1[b] > hi1[a] || lo2[a] > hi2[b] || lo2[b] > hi2[a])
+            continue;
+          bool shared = false;
+          for (std::uint32_t k : xk)
+            if (k != kNoKey && (k == key0[b] || k == key1[b] || k == key2[b])) shared = true;
+          if (!shared) exact(b);
         }
       }
     }
