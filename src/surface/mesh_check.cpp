@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <iterator>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "../core/union_find_internal.h"
 #include "contour4d/metrics/topology.h"
@@ -19,14 +21,13 @@ namespace c4d {
 namespace {
 
 struct HalfEdge {
-  std::uint32_t lo, hi;   // sorted endpoints
-  bool forward;           // runs lo -> hi
-  std::size_t tri;
+  std::uint32_t lo, hi;          // sorted endpoints
+  std::uint32_t tri;
+  std::uint8_t corner_lo, corner_hi;  // the first corner of tri at lo, at hi
+  bool forward;                  // runs lo -> hi
 };
 
-std::size_t corner(std::size_t tri, const Triangle& t, std::uint32_t v) {
-  return 3 * tri + (t[0] == v ? 0 : (t[1] == v ? 1 : 2));
-}
+std::uint8_t corner(const Triangle& t, std::uint32_t v) { return t[0] == v ? 0 : (t[1] == v ? 1 : 2); }
 
 bool soup_self_intersects(const TriangleMesh& mesh) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -61,6 +62,9 @@ std::vector<std::array<std::uint32_t, 2>> self_intersecting_pairs(const Triangle
 MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
   MeshCheck c;
   const std::size_t nt = mesh.triangles.size();
+  // Triangles and corners are numbered in 32 bits below (half the memory traffic of the sort and the
+  // disjoint sets); such a mesh would take more than 17 GB of triangles alone.
+  if (nt > UINT32_MAX / 3) throw std::length_error("check_mesh: more than " + std::to_string(UINT32_MAX / 3) + " triangles");
   // Half-edges grouped by their lower endpoint (a counting sort), each group then sorted by upper
   // endpoint and triangle: the order of one sort by (lo, hi, tri), in linear time.
   const std::size_t nv = mesh.positions.size();
@@ -83,15 +87,15 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
     for (std::size_t f = 0; f < nt; ++f) {
       const Triangle& t = mesh.triangles[f];
       for (int k = 0; k < 3; ++k) {
-        const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-        hes[fill[std::min(a, b)]++] = {std::min(a, b), std::max(a, b), a < b, f};
+        const std::uint32_t a = t[k], b = t[(k + 1) % 3], lo = std::min(a, b), hi = std::max(a, b);
+        hes[fill[lo]++] = {lo, hi, static_cast<std::uint32_t>(f), corner(t, lo), corner(t, hi), a < b};
       }
     }
   }
   for (std::size_t v = 0; v < nv; ++v)
     std::sort(hes.begin() + static_cast<std::ptrdiff_t>(start[v]), hes.begin() + static_cast<std::ptrdiff_t>(start[v + 1]),
               [](const HalfEdge& x, const HalfEdge& y) { return x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri; });
-  UnionFind faces(nt), corners(3 * nt);
+  DisjointSets<std::uint32_t> faces(nt), corners(3 * nt);
   std::size_t edges = 0;
   for (std::size_t i = 0; i < hes.size();) {
     std::size_t j = i;
@@ -103,9 +107,8 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
     if (count == 2) {
       if (hes[i].forward == hes[i + 1].forward) ++c.misoriented_edges;
       const std::size_t t1 = hes[i].tri, t2 = hes[i + 1].tri;
-      const Triangle &a = mesh.triangles[t1], &b = mesh.triangles[t2];
-      corners.unite(corner(t1, a, hes[i].lo), corner(t2, b, hes[i].lo));
-      corners.unite(corner(t1, a, hes[i].hi), corner(t2, b, hes[i].hi));
+      corners.unite(3 * t1 + hes[i].corner_lo, 3 * t2 + hes[i + 1].corner_lo);
+      corners.unite(3 * t1 + hes[i].corner_hi, 3 * t2 + hes[i + 1].corner_hi);
     }
     for (auto it = hes.begin() + static_cast<std::ptrdiff_t>(i + 1); it != hes.begin() + static_cast<std::ptrdiff_t>(j); ++it)
       faces.unite(hes[i].tri, it->tri);
