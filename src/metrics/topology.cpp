@@ -196,20 +196,17 @@ inline float next_float_down(float f) {
   return f == 0.0f ? -std::numeric_limits<float>::denorm_min() : below;
 }
 template <class F>
-bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vector<char>* flagged,
-                            const std::vector<std::array<std::uint32_t, 3>>& keys, F&& f) {
+bool grid_overlapping_pairs(const std::vector<std::array<double, 6>>& box, const std::vector<std::size_t>& info,
+                            const std::vector<char>* flagged, const std::vector<std::array<std::uint32_t, 3>>& keys, F&& f) {
   constexpr double kCrowded = 64.0;
-  const std::size_t n = boxes.size();
+  const std::size_t n = box.size();
   if (n < 2) return true;
-  // The boxes' corners side by side (min x y z, max x y z), and their extent.
-  std::vector<std::array<double, 6>> box(n);
+  // The boxes' extents.
   std::vector<double> sizes(n);
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (std::size_t m = 0; m < n; ++m) {
     double big = 0.0;
     for (int d = 0; d < 3; ++d) {
-      box[m][d] = boxes[m]->min_coord(d);
-      box[m][d + 3] = boxes[m]->max_coord(d);
       big = std::max(big, box[m][d + 3] - box[m][d]);
       lo[d] = std::min(lo[d], box[m][d]);
       hi[d] = std::max(hi[d], box[m][d + 3]);
@@ -267,7 +264,7 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
   std::vector<char> marked(n, 1);
   if (flagged != nullptr)
     for (std::size_t m = 0; m < n; ++m) {
-      const std::size_t t = boxes[m]->info();
+      const std::size_t t = info[m];
       marked[m] = t < flagged->size() && (*flagged)[t] ? 1 : 0;
     }
   // Each cell's boxes side by side in single precision, rounded outwards (so a pair of closed boxes
@@ -369,7 +366,7 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
   else
     for (std::size_t block = 0; block < blocks; ++block) scan(block);
   for (const auto& pairs : found)
-    for (const auto& [p, q] : pairs) f(boxes[p], boxes[q]);
+    for (const auto& [p, q] : pairs) f(info[p], info[q]);
   return true;
 }
 
@@ -377,39 +374,43 @@ bool grid_overlapping_pairs(const std::vector<const Box*>& boxes, const std::vec
 std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector<char>* only,
                                      std::vector<std::pair<std::size_t, std::size_t>>* pairs, std::size_t max_pairs_listed) {
   const std::size_t nv = mesh.positions.size();
-  std::vector<Box> boxes;
-  boxes.reserve(mesh.triangles.size());
+  // The triangles tested (valid, finite, not collinear), in order: their boxes (min x y z, max x y z).
+  std::vector<char> finite(nv);
+  for (std::size_t v = 0; v < nv; ++v) finite[v] = is_finite(mesh.positions[v]) ? 1 : 0;
+  std::vector<std::array<double, 6>> coords;
+  std::vector<std::size_t> info;
+  coords.reserve(mesh.triangles.size());
+  info.reserve(mesh.triangles.size());
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     const Triangle& t = mesh.triangles[i];
-    if (!valid_triangle(t, nv)) continue;
+    if (!valid_triangle(t, nv) || !finite[t[0]] || !finite[t[1]] || !finite[t[2]]) continue;
     const Vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
-    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
-    const Point pa = to_point(a), pb = to_point(b), pc = to_point(c);
-    if (CGAL::collinear(pa, pb, pc)) continue;  // reported as degenerate, not as an intersection
-    boxes.emplace_back(pa.bbox() + pb.bbox() + pc.bbox(), i);
+    if (CGAL::collinear(to_point(a), to_point(b), to_point(c))) continue;  // reported as degenerate, not as an intersection
+    coords.push_back({std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::min({a.z, b.z, c.z}),
+                      std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})});
+    info.push_back(i);
   }
   auto flagged = [&](std::size_t i) { return only == nullptr || (i < only->size() && (*only)[i]); };
-  std::vector<const Box*> all, some;
-  all.reserve(boxes.size());
-  for (const Box& b : boxes) {
-    all.push_back(&b);
-    if (only != nullptr && flagged(b.info())) some.push_back(&b);
-  }
+  std::size_t flagged_count = 0;
   std::size_t count = 0;
   std::set<std::pair<std::size_t, std::size_t>> first;  // the smallest pairs: same list whatever the visiting order
   // Every pair tested has a flagged triangle: only the fans of their vertices are needed.
   std::vector<char> wanted;
   if (only != nullptr) {
     wanted.assign(nv, 0);
-    for (const Box* b : some)
-      for (std::uint32_t v : mesh.triangles[b->info()]) wanted[v] = 1;
+    for (std::size_t i : info)
+      if (flagged(i)) {
+        ++flagged_count;
+        for (std::uint32_t v : mesh.triangles[i]) wanted[v] = 1;
+      }
   }
   const std::vector<char> untangled = untangled_fans(mesh, only != nullptr ? &wanted : nullptr);
-  auto callback = [&](const Box* x, const Box* y) {
-    const std::size_t i = std::min(x->info(), y->info()), j = std::max(x->info(), y->info());
+  // Triangles x and y (indices) whose boxes overlap.
+  auto callback = [&](std::size_t x, std::size_t y) {
+    const std::size_t i = std::min(x, y), j = std::max(x, y);
     if (i == j) return;
     // A pair of two flagged triangles is met twice in the two-set search: counted from its smaller one.
-    if (only != nullptr && flagged(y->info()) && x->info() > y->info()) return;
+    if (only != nullptr && flagged(y) && x > y) return;
     const Triangle &s = mesh.triangles[i], &t = mesh.triangles[j];
     for (std::uint32_t v : s)
       if (untangled[v] && (v == t[0] || v == t[1] || v == t[2])) return;
@@ -422,18 +423,31 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
   };
   // The grid's keys: each triangle's vertices whose fans are untangled (pairs sharing one are dropped
   // by the callback's first test).
-  std::vector<std::array<std::uint32_t, 3>> keys(all.size());
-  for (std::size_t m = 0; m < all.size(); ++m) {
-    const Triangle& t = mesh.triangles[all[m]->info()];
+  std::vector<std::array<std::uint32_t, 3>> keys(info.size());
+  for (std::size_t m = 0; m < info.size(); ++m) {
+    const Triangle& t = mesh.triangles[info[m]];
     for (int k = 0; k < 3; ++k) keys[m][static_cast<std::size_t>(k)] = untangled[t[static_cast<std::size_t>(k)]] ? t[static_cast<std::size_t>(k)] : kNoKey;
   }
   // The grid, or CGAL's box search where the grid's cells are crowded.
-  const bool nothing_flagged = only != nullptr && some.empty();
-  if (!nothing_flagged && !grid_overlapping_pairs(all, only, keys, callback)) {
+  const bool nothing_flagged = only != nullptr && flagged_count == 0;
+  if (!nothing_flagged && !grid_overlapping_pairs(coords, info, only, keys, callback)) {
+    std::vector<Box> boxes;
+    boxes.reserve(coords.size());
+    for (std::size_t m = 0; m < coords.size(); ++m) {
+      const auto& c = coords[m];
+      boxes.emplace_back(CGAL::Bbox_3(c[0], c[1], c[2], c[3], c[4], c[5]), info[m]);
+    }
+    std::vector<const Box*> all, some;
+    all.reserve(boxes.size());
+    for (const Box& b : boxes) {
+      all.push_back(&b);
+      if (only != nullptr && flagged(b.info())) some.push_back(&b);
+    }
+    auto by_box = [&](const Box* x, const Box* y) { callback(x->info(), y->info()); };
     if (only == nullptr)
-      CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), callback, std::ptrdiff_t(2000));
+      CGAL::box_self_intersection_d<CGAL::Sequential_tag>(all.begin(), all.end(), by_box, std::ptrdiff_t(2000));
     else
-      CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), callback);
+      CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), by_box);
   }
   if (pairs != nullptr) pairs->assign(first.begin(), first.end());
   return count;
