@@ -59,7 +59,7 @@ SurfaceWalk make_surface_walk(TriangleMesh surface, std::vector<std::int32_t> pa
   for (std::size_t k = 0; k < w.triangles.size(); ++k)
     for (std::uint32_t v : w.triangles[k]) w.tris[fill[v]++] = static_cast<std::uint32_t>(k);
   w.balls.resize(w.triangles.size());
-  w.planes.assign(w.triangles.size(), {0.0, 0.0, 0.0, 0.0});
+  w.planes.assign(w.triangles.size(), {0.0, 0.0, 0.0, 0.0, 0.0});
   for (std::size_t k = 0; k < w.triangles.size(); ++k) {
     const Triangle& t = w.triangles[k];
     const Vec3 c = (w.positions[t[0]] + w.positions[t[1]] + w.positions[t[2]]) / 3.0;
@@ -69,7 +69,10 @@ SurfaceWalk make_surface_walk(TriangleMesh surface, std::vector<std::int32_t> pa
     const double ln = norm(n);
     if (ln > 0 && std::isfinite(ln)) {
       const Vec3 u = n / ln;
-      w.planes[k] = {u.x, u.y, u.z, dot(u, a)};
+      const double offset = dot(u, a);
+      double slack = 0.0;
+      for (std::uint32_t v : t) slack = std::max(slack, std::abs(dot(u, w.positions[v]) - offset));
+      w.planes[k] = {u.x, u.y, u.z, offset, slack};
     }
   }
   return w;
@@ -124,8 +127,9 @@ Vec3 walk_closest(const SurfaceWalk& walk, const Vec3& p, std::int32_t& hint) {
   Vec3 best_q;
   double best = dist2(hint, &best_q);
   double reach = std::sqrt(best);
-  // The plane test's margin: far above the rounding of a closest point and of its distance (about
-  // 1e-16 of the coordinates), so a triangle it skips is never measured nearer than the best.
+  // The plane test's margin: far above the rounding of a closest point, of its distance and of the
+  // plane test itself (about 1e-16 of the coordinates), so a triangle it skips is never measured nearer
+  // than the best.
   const double margin = 1e-9 * (1.0 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
   const bool listed = !walk.near_start.empty();
   for (int step = 0; step < 256; ++step) {
@@ -136,9 +140,10 @@ Vec3 walk_closest(const SurfaceWalk& walk, const Vec3& p, std::int32_t& hint) {
       const auto& ball = walk.balls[cand];
       const double bx = p.x - ball[0], by = p.y - ball[1], bz = p.z - ball[2], lim = ball[3] + reach;
       if (bx * bx + by * by + bz * bz > (1.0 + 1e-9) * lim * lim) return;
-      // Nor one whose plane lies farther (its distance bounds the triangle's from below).
+      // Nor one whose plane lies farther: the triangle lies within `slack` of its plane, so its distance
+      // is at least the plane's less that.
       const auto& pl = walk.planes[cand];
-      if (std::abs(pl[0] * p.x + pl[1] * p.y + pl[2] * p.z - pl[3]) > reach + margin) return;
+      if (std::abs(pl[0] * p.x + pl[1] * p.y + pl[2] * p.z - pl[3]) > reach + margin + pl[4]) return;
       Vec3 q;
       const double d = dist2(static_cast<std::int32_t>(cand), &q);
       if (d < best) {

@@ -23,8 +23,10 @@ struct SurfaceWalk {
   std::vector<std::int32_t> patch;          //!< per triangle
   std::vector<std::uint32_t> start, tris;   //!< triangles of vertex v: tris[start[v] .. start[v + 1])
   std::vector<std::array<double, 4>> balls; //!< per triangle: a ball holding it (centroid, radius)
-  //! Per triangle: its plane, unit normal n and offset n·a (all zero for a degenerate triangle).
-  std::vector<std::array<double, 4>> planes;
+  //! Per triangle: its plane, unit normal n and offset n·a, and the largest |n·v − offset| of its
+  //! corners v as computed (the plane's own rounding, large only on a sliver); all zero for a
+  //! degenerate triangle.
+  std::vector<std::array<double, 5>> planes;
   //! Optional (add_neighbour_lists): per triangle t, the triangles a walk step from t measures, in its
   //! order: near[near_start[t] .. near_start[t + 1]). Empty: the step finds them around t's corners.
   std::vector<std::uint32_t> near_start, near;
