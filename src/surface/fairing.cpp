@@ -4,13 +4,17 @@
 // multi-resolution modeling on arbitrary meshes"; Botsch & Sorkine 2008, "On linear variational
 // surface deformation methods"): the free vertices minimise the squared umbrella Laplacian, the
 // contour vertices are fixed, and because the Laplacian of each contour vertex enters the energy the
-// two sides of a contour are coupled, giving a surface that is smooth across it.
+// two sides of a contour are coupled, giving a surface that is smooth across it. Where a region
+// meshed coarser meets the rest (the uniform caps), its terms use the scale-dependent umbrella of
+// Desbrun et al. 1999 ("Implicit fairing of irregular meshes using diffusion and curvature flow", §4),
+// so that the slopes, not the steps, match across the contour (FairingOptions::scale_aware).
 #include "contour4d/surface/fairing.h"
 
 #include <Eigen/Sparse>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -144,6 +148,23 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
     double w = shape ? std::sqrt(std::max(0.0, options.shape_weight)) : 1.0;
     if (!options.row_scale.empty()) w *= options.row_scale[v];
     const double inv = 1.0 / static_cast<double>(ring_size(v));
+    // Neighbour weights: 1/n (uniform), or 1/n · reference_edge / |x_u − x_v| (scale-aware, where every
+    // edge has a usable length; a vertex on top of a neighbour keeps the uniform term).
+    bool scaled = !options.scale_aware.empty() && options.scale_aware[v];
+    if (scaled) {
+      const double shortest = 1e-6 * options.reference_edge;
+      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1] && scaled; ++k)
+        scaled = distance(mesh.positions[v], mesh.positions[ring_list[k]]) > shortest;
+      scaled = scaled && std::isfinite(options.reference_edge) && options.reference_edge > 0.0;
+    }
+    auto weight = [&](std::uint32_t u) {
+      return scaled ? inv * (options.reference_edge / distance(mesh.positions[v], mesh.positions[u])) : inv;
+    };
+    double self = -1.0;
+    if (scaled) {
+      self = 0.0;
+      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) self -= weight(ring_list[k]);
+    }
     std::array<double, 3> c{0, 0, 0};
     bool touches = false;
     auto add = [&](std::uint32_t u, double coef) {
@@ -158,16 +179,16 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
       }
     };
     const std::size_t mark = trip.size();
-    for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) add(ring_list[k], inv);
-    add(static_cast<std::uint32_t>(v), -1.0);
+    for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) add(ring_list[k], weight(ring_list[k]));
+    add(static_cast<std::uint32_t>(v), self);
     if (!touches) {
       trip.resize(mark);
       continue;
     }
     if (shape) {
       // b_v: the Laplacian of the input positions.
-      Vec3 lap = -1.0 * mesh.positions[v];
-      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) lap += inv * mesh.positions[ring_list[k]];
+      Vec3 lap = self * mesh.positions[v];
+      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) lap += weight(ring_list[k]) * mesh.positions[ring_list[k]];
       c[0] -= w * lap.x;
       c[1] -= w * lap.y;
       c[2] -= w * lap.z;

@@ -63,3 +63,38 @@ TEST(Fairing, RowScaleWeighsTheTermsOfItsVertices) {
   for (std::size_t v = 0; v < nv / 2; ++v) half[v] = 0.5;  // the lower half's rows weigh a quarter
   EXPECT_GT(max_difference(faired(half), plain), 1e-3);
 }
+
+// Scale-aware terms (FairingOptions::scale_aware): the reference length scales every such term alike,
+// so where every term is scale-aware the minimiser stays; scaling the mesh and the reference together scales the result; they move the
+// minimiser away from the uniform one on a mesh whose edges differ; and a vertex on top of a neighbour
+// keeps its uniform term (no infinite weight). Their purpose, slopes matched across a change of mesh
+// density, is measured on the torus's caps (ReconstructPhantoms.AccuracyVolumeAndQuality).
+TEST(Fairing, ScaleAwareTermsDependOnlyOnTheEdgesRatios) {
+  const Tube tube = bumpy_tube(24, 13);
+  const std::size_t nv = tube.mesh.positions.size();
+  auto faired = [&](const c4d::TriangleMesh& mesh, const std::vector<char>& aware, double reference) {
+    c4d::TriangleMesh m = mesh;
+    c4d::FairingOptions o;
+    o.scale_aware = aware;
+    o.reference_edge = reference;
+    EXPECT_TRUE(c4d::fair_thin_plate(m, tube.fixed, {}, o));
+    for (const c4d::Vec3& p : m.positions) EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    return m;
+  };
+  std::vector<char> aware(nv, 0);
+  for (std::size_t v = 0; v < nv / 2; ++v) aware[v] = 1;  // the lower half's terms
+  const c4d::TriangleMesh uniform = faired(tube.mesh, {}, 1.0);
+  const c4d::TriangleMesh scaled = faired(tube.mesh, aware, 1.0);
+  EXPECT_GT(max_difference(scaled, uniform), 1e-3);
+  const std::vector<char> all(nv, 1);
+  EXPECT_LT(max_difference(faired(tube.mesh, all, 3.0), faired(tube.mesh, all, 1.0)), 1e-9);
+  c4d::TriangleMesh big = tube.mesh;
+  for (c4d::Vec3& p : big.positions) p = 2.5 * p;
+  c4d::TriangleMesh big_faired = faired(big, aware, 2.5);
+  for (c4d::Vec3& p : big_faired.positions) p = (1.0 / 2.5) * p;
+  EXPECT_LT(max_difference(big_faired, scaled), 1e-9);
+  // A free vertex moved onto its fixed neighbour below: its term stays uniform, the result finite.
+  c4d::TriangleMesh pinched = tube.mesh;
+  pinched.positions[24 + 5] = pinched.positions[5];
+  faired(pinched, all, 1.0);
+}
