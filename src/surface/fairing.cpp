@@ -5,7 +5,7 @@
 // surface deformation methods"): the free vertices minimise the squared umbrella Laplacian, the
 // contour vertices are fixed, and because the Laplacian of each contour vertex enters the energy the
 // two sides of a contour are coupled, giving a surface that is smooth across it. Where a region
-// meshed coarser meets the rest (the uniform caps), its terms use the scale-dependent umbrella of
+// meshed coarser meets the rest (ring caps), its terms use the scale-dependent umbrella of
 // Desbrun et al. 1999 ("Implicit fairing of irregular meshes using diffusion and curvature flow", §4),
 // so that the slopes, not the steps, match across the contour (FairingOptions::scale_aware).
 #include "contour4d/surface/fairing.h"

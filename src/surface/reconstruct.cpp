@@ -37,9 +37,11 @@ namespace c4d {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// CGAL's size bound, in edges, of the uniform interior of the caps that are not filled (rings, lone
-// contours); their fairing terms are scale-aware (reconstruct_frame).
-constexpr double kUniformCapScale = 2.0;
+// CGAL's size bound, in edges, of the uniform interior of ring caps with walls (their fairing terms
+// scale-aware) and of the other caps that are not filled (lone contours and holes, rings without walls;
+// their rows scaled by its inverse).
+constexpr double kRingCapScale = 2.0;
+const double kUniformCapScale = std::sqrt(2.0);
 
 std::size_t loops_points(const std::vector<std::vector<Vec2>>& loops) {
   std::size_t n = 0;
@@ -780,7 +782,8 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   std::vector<char> fixed(b.positions.size(), 0);
   std::fill(fixed.begin(), fixed.begin() + contour_vertices, 1);
   std::vector<char> keep_shape;
-  std::vector<char> scale_aware;  // per vertex: its fairing term is scale-aware (uniform caps)
+  std::vector<double> row_scale;
+  std::vector<char> scale_aware;  // per vertex: its fairing term is scale-aware (ring caps)
   std::vector<CapFill> fills;
   for (std::size_t s = 0; s < slices.size(); ++s)
     for (bool top : {false, true}) {
@@ -815,13 +818,16 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         // A coarser interior far from the contour: fewer unknowns for the fairing (CapOptions::far_scale).
         // Only on filled caps, whose volume the fill sets: a faired dome over a graded mesh comes out
         // lower (the umbrella Laplacian weighs a coarse region's curvature more), the torus's rings by 3 %.
-        // The others (rings, lone contours) get a uniform interior of CGAL's bound 2 edges (mean edge
-        // about 1.4 edges; the final remeshing brings it back to `edge`) and scale-aware fairing terms
-        // (below). Torus: 6 320, 3 288, 1 783 points per ring cap at bounds 1, √2, 2; the frame 164–167
-        // -> 131–142 ms from √2 to 2 (one_frame_surface.md).
+        // The others get a uniform interior. Rings with walls: CGAL's bound 2 edges (mean edge about 1.4 edges; the
+        // final remeshing brings it back to `edge`) and scale-aware fairing terms (below); torus: 6 320,
+        // 3 288, 1 783 points per ring cap at bounds 1, √2, 2, the frame 164–167 -> 131–142 ms from √2 to
+        // 2 (one_frame_surface.md). Lone contours and holes, and rings without walls (their domes keep
+        // their shape): bound √2 (mean edge about `edge`; bound 1 gave 0.7 edge) and their rows scaled by
+        // 1/√2 (below).
+        const bool ring = group.size() > 1 && !lone;
         if (!fillable) {
           cop.far_scale = 1.0;
-          cop.uniform_scale = kUniformCapScale;
+          cop.uniform_scale = ring ? kRingCapScale : kUniformCapScale;
         }
         const CapMesh cap = triangulate_cap(loops, opt.caps, cop);
         for (double hk : cap.height) {
@@ -838,12 +844,20 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
           keep_shape.resize(b.positions.size(), 0);
           // A contour without wall (lone slice) has nothing to continue: its domes keep their shape.
           keep_shape.back() = opt.caps == CapStyle::Rounded && (opt.cap_shape_weight > 0 || lone) ? 1 : 0;
+          // The umbrella Laplacian of a vertex grows with its edges squared, so the energy per area of a
+          // region grows with its edge length squared: rows of a coarser interior are scaled back by
+          // 1 / uniform_scale, keeping the dome's stiffness against the walls as at the bound of 1 edge
+          // (torus volume −1.15 % unscaled, −0.38 % scaled at bound √2; its rings are scale-aware now).
+          if (cop.uniform_scale != 1.0 && !ring) {
+            row_scale.resize(b.positions.size(), 1.0);
+            row_scale.back() = 1.0 / cop.uniform_scale;
+          }
         }
-        // The uniform umbrella of a coarser interior weighs its curvature more and matches the steps, not
-        // the slopes, across the contour: the dome comes out lower (torus volume −1.15 % at bound √2,
-        // −1.54 % at 2 even with its rows scaled by 1 / bound). Scale-aware terms on the interior and its
-        // contours (FairingOptions::scale_aware): −0.20 % at bound 2.
-        if (cop.uniform_scale != 1.0 && id.size() > loops_points(loops)) {
+        // On a ring cap meshed coarser than the walls, the uniform umbrella matches the steps, not the
+        // slopes, across the contours: the dome comes out lower (torus volume −1.54 % at bound 2 even with
+        // its rows scaled by 1/2). Scale-aware terms on the interior and its contours
+        // (FairingOptions::scale_aware): −0.20 %.
+        if (!fillable && ring && id.size() > loops_points(loops)) {
           scale_aware.resize(b.positions.size(), 0);
           for (std::uint32_t u : id) scale_aware[u] = 1;
         }
@@ -882,6 +896,10 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   if (manifold && opt.fairing) {
     FairingOptions fo;
     fo.shape_weight = opt.cap_shape_weight > 0 ? opt.cap_shape_weight : 1.0;
+    if (!row_scale.empty()) {
+      row_scale.resize(mesh.positions.size(), 1.0);
+      fo.row_scale = std::move(row_scale);
+    }
     if (!scale_aware.empty()) {
       scale_aware.resize(mesh.positions.size(), 0);
       fo.scale_aware = std::move(scale_aware);

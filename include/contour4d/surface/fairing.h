@@ -16,12 +16,12 @@ struct FairingOptions {
   std::vector<double> row_scale;  //!< per vertex, a factor on its term's row (its weight: the factor squared); empty:
                                   //!< 1 everywhere. The umbrella Laplacian grows with the edge length squared, so
                                   //!< a region meshed s times coarser weighs s² as much per area: 1/s there keeps
-                                  //!< the balance
+                                  //!< the balance (reconstruct_frame's caps without walls)
   std::vector<char> scale_aware;  //!< per vertex (empty: none): its term weighs each neighbour u by
                                   //!< reference_edge / |x_u − x_v| (measured before fairing) besides the
                                   //!< uniform 1/n: the scale-dependent umbrella (Desbrun et al. 1999) scaled
                                   //!< to the uniform one's size on a mesh of `reference_edge`. Where a region
-                                  //!< meshed coarser meets a finer one (reconstruct_frame's uniform caps),
+                                  //!< meshed coarser meets a finer one (reconstruct_frame's ring caps),
                                   //!< the uniform umbrella matches the two sides' steps, not their slopes,
                                   //!< and flattens the coarse side; this one matches the slopes
   double reference_edge = 1.0;    //!< the edge length (mm) at which a scale-aware term equals the uniform one
