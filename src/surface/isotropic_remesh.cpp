@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <numeric>
 
+#include "contour4d/core/radix_sort.h"
 #include "contour4d/surface/surface_walk.h"
 
 namespace c4d {
@@ -36,6 +37,7 @@ struct Remesher {
   const SurfaceWalk* ref = nullptr;
   std::vector<std::int32_t> scratch, around;  // ring() output; a copy kept while scratch is reused
   bool ring_closed = false;                   // find_halfedge's ring in scratch is a closed fan
+  std::vector<std::pair<double, std::uint64_t>> sort_spare;  // sort_pairs' buffer
 
   // Half-edge arithmetic, in unsigned arithmetic for the valid (non-negative) half-edges: a division by 3
   // is then one multiplication and a shift. next(kNone) and face_of(kNone) keep their signed values.
@@ -306,7 +308,7 @@ struct Remesher {
         }
       }
       if (todo.empty()) return;
-      std::sort(todo.begin(), todo.end());
+      sort_pairs(todo, sort_spare);  // std::sort's order
       if (pass > 0) todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
       added_from = x.size();
       for (const auto& [negl, key] : todo) {
@@ -398,7 +400,7 @@ struct Remesher {
       for_each_free_edge([&](std::uint32_t a, std::uint32_t b, double l2) {
         if (l2 < low2 && !(locked[a] && locked[b])) todo.push_back({l2, edge_key(a, b)});
       });
-      std::sort(todo.begin(), todo.end());
+      sort_pairs(todo, sort_spare);  // std::sort's order
     } else {
       // Only edges at a touched vertex qualify: found around those vertices instead of over every face,
       // each from the same half-edge as for_each_free_edge (the one of the pair with the lower index), so
@@ -409,7 +411,7 @@ struct Remesher {
           if (l2 < low2 && !(locked[a] && locked[b])) todo.push_back({l2, edge_key(a, b)});
         });
       }
-      std::sort(todo.begin(), todo.end());
+      sort_pairs(todo, sort_spare);  // std::sort's order
       todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     }
     next_touched.assign(x.size(), 0);

@@ -1,6 +1,8 @@
 // Properties of the core value types and geometry helpers.
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -8,6 +10,7 @@
 #include "contour4d/core/errors.h"
 #include "contour4d/core/mesh.h"
 #include "contour4d/core/plane.h"
+#include "contour4d/core/radix_sort.h"
 
 namespace c4d {
 namespace {
@@ -93,3 +96,30 @@ TEST(Errors, MessageNamesThePlaceAndTheHint) {
 
 }  // namespace
 }  // namespace c4d
+
+// sort_pairs gives std::sort's order bit for bit: long and short lists, negative values (the
+// remeshing's split list sorts by −length²), many ties on the value (resolved by the id), −0 and +0 as
+// equal values, identical items kept.
+TEST(RadixSort, GivesStdSortsOrder) {
+  std::mt19937_64 rng(7);
+  for (const std::size_t n : {0u, 1u, 100u, 511u, 512u, 5000u, 70000u}) {
+    for (const bool negative : {false, true}) {
+      std::vector<std::pair<double, std::uint64_t>> items;
+      std::uniform_real_distribution<double> length(0.1, 0.9);
+      for (std::size_t i = 0; i < n; ++i) {
+        double v = i % 7 == 0 ? 0.25 : length(rng);  // every seventh the same value
+        if (i % 97 == 0) v = i % 2 == 0 ? 0.0 : -0.0;
+        items.push_back({negative ? -v : v, rng() % (4 * n + 1)});
+        if (i % 50 == 0) items.push_back(items.back());  // duplicates
+      }
+      std::vector<std::pair<double, std::uint64_t>> expected = items, spare;
+      std::sort(expected.begin(), expected.end());
+      c4d::sort_pairs(items, spare);
+      ASSERT_EQ(items.size(), expected.size());
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        // −0 and +0 compare equal: std::sort may leave them in either order, so compare as values.
+        EXPECT_TRUE(items[i].first == expected[i].first && items[i].second == expected[i].second) << n << " at " << i;
+      }
+    }
+  }
+}
