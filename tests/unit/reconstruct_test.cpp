@@ -296,23 +296,32 @@ c4d::Sequence irregular() {
   });
 }
 
+// A ring (a contour with a hole) on three slices: its end caps are ring caps, faired with scale-aware
+// terms (FairingOptions::scale_aware).
+c4d::Sequence irregular_ring() {
+  return stack(range(0, 10, 5), [](double z) {
+    return Polys{ellipse(0.2 * z, 0.1 * z, 16 - 0.2 * z, 12, 95, 0.05), ellipse(0.2 * z + 1, 0.1 * z, 7, 5 + 0.1 * z, 41, 0.05)};
+  });
+}
+
 TEST(Reconstruct, InvariantToStartPointOrientationAndSliceOrder) {
-  const auto seq = irregular();
-  for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
-    const auto ref = c4d::reconstruct_frame(seq, 0, opt);
-    auto moved = seq;
-    for (auto& s : moved.frames[0].slices)
-      for (auto& c : s.contours) {
-        std::reverse(c.points.begin(), c.points.end());
-        std::rotate(c.points.begin(), c.points.begin() + 11, c.points.end());
-      }
-    std::reverse(moved.frames[0].slices.begin(), moved.frames[0].slices.end());
-    expect_same_surface(ref, c4d::reconstruct_frame(moved, 0, opt), [](Vec3 q) { return q; });
+  for (const auto& seq : {irregular(), irregular_ring()}) {
+    for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+      const auto ref = c4d::reconstruct_frame(seq, 0, opt);
+      expect_closed(ref, seq.frames[0].slices[0].contours.size() == 2 ? 0 : 2, 1);  // the ring: genus 1
+      auto moved = seq;
+      for (auto& s : moved.frames[0].slices)
+        for (auto& c : s.contours) {
+          std::reverse(c.points.begin(), c.points.end());
+          std::rotate(c.points.begin(), c.points.begin() + 11, c.points.end());
+        }
+      std::reverse(moved.frames[0].slices.begin(), moved.frames[0].slices.end());
+      expect_same_surface(ref, c4d::reconstruct_frame(moved, 0, opt), [](Vec3 q) { return q; });
+    }
   }
 }
 
 TEST(Reconstruct, InvariantToRigidMotion) {
-  const auto seq = irregular();
   // Rotation about a skew axis and a translation; the stack frame (normal, u, v) moves with it.
   const double c = std::cos(0.7), s = std::sin(0.7), c2 = std::cos(0.3), s2 = std::sin(0.3);
   auto R = [&](Vec3 p) {
@@ -324,19 +333,21 @@ TEST(Reconstruct, InvariantToRigidMotion) {
     return Vec3{c * a.x + s * a.y, -s * a.x + c * a.y, a.z};
   };
   const Vec3 t{12.5, -40.25, 101.0};
-  auto moved = seq;
-  moved.normal = R(seq.normal);
-  moved.u = R(seq.u);
-  moved.v = R(seq.v);
-  for (auto& sl : moved.frames[0].slices) {
-    sl.offset += c4d::dot(moved.normal, t);
-    for (auto& ct : sl.contours)
-      for (auto& p : ct.points) p = R(p) + t;
-  }
-  for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
-    const auto ref = c4d::reconstruct_frame(seq, 0, opt);
-    const auto out = c4d::reconstruct_frame(moved, 0, opt);
-    expect_same_surface(ref, out, [&](Vec3 q) { return Rinv(q - t); });
+  for (const auto& seq : {irregular(), irregular_ring()}) {
+    auto moved = seq;
+    moved.normal = R(seq.normal);
+    moved.u = R(seq.u);
+    moved.v = R(seq.v);
+    for (auto& sl : moved.frames[0].slices) {
+      sl.offset += c4d::dot(moved.normal, t);
+      for (auto& ct : sl.contours)
+        for (auto& p : ct.points) p = R(p) + t;
+    }
+    for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+      const auto ref = c4d::reconstruct_frame(seq, 0, opt);
+      const auto out = c4d::reconstruct_frame(moved, 0, opt);
+      expect_same_surface(ref, out, [&](Vec3 q) { return Rinv(q - t); });
+    }
   }
 }
 
