@@ -142,6 +142,8 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
   trip.reserve(8 * nv);
   constant.reserve(nv);
   int rows = 0;
+  const bool scale_ok = std::isfinite(options.reference_edge) && options.reference_edge > 0.0;
+  std::vector<double> ring_weight;  // a scale-aware vertex's neighbour weights, in ring order
   for (std::size_t v = 0; v < nv; ++v) {
     if (ring_size(v) == 0 || boundary[v]) continue;
     const bool shape = !keep_shape.empty() && keep_shape[v];
@@ -150,20 +152,20 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
     const double inv = 1.0 / static_cast<double>(ring_size(v));
     // Neighbour weights: 1/n (uniform), or 1/n · reference_edge / |x_u − x_v| (scale-aware, where every
     // edge has a usable length; a vertex on top of a neighbour keeps the uniform term).
-    bool scaled = !options.scale_aware.empty() && options.scale_aware[v];
+    bool scaled = !options.scale_aware.empty() && options.scale_aware[v] && scale_ok;
     if (scaled) {
-      const double shortest = 1e-6 * options.reference_edge;
-      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1] && scaled; ++k)
-        scaled = distance(mesh.positions[v], mesh.positions[ring_list[k]]) > shortest;
-      scaled = scaled && std::isfinite(options.reference_edge) && options.reference_edge > 0.0;
+      ring_weight.clear();
+      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1] && scaled; ++k) {
+        const double d = distance(mesh.positions[v], mesh.positions[ring_list[k]]);
+        scaled = d > 1e-6 * options.reference_edge;
+        ring_weight.push_back(inv * (options.reference_edge / d));
+      }
     }
-    auto weight = [&](std::uint32_t u) {
-      return scaled ? inv * (options.reference_edge / distance(mesh.positions[v], mesh.positions[u])) : inv;
-    };
+    auto weight = [&](std::uint32_t k) { return scaled ? ring_weight[k - ring_start[v]] : inv; };  // k: ring_list index
     double self = -1.0;
     if (scaled) {
       self = 0.0;
-      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) self -= weight(ring_list[k]);
+      for (const double wk : ring_weight) self -= wk;
     }
     std::array<double, 3> c{0, 0, 0};
     bool touches = false;
@@ -179,7 +181,7 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
       }
     };
     const std::size_t mark = trip.size();
-    for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) add(ring_list[k], weight(ring_list[k]));
+    for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) add(ring_list[k], weight(k));
     add(static_cast<std::uint32_t>(v), self);
     if (!touches) {
       trip.resize(mark);
@@ -188,7 +190,7 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
     if (shape) {
       // b_v: the Laplacian of the input positions.
       Vec3 lap = self * mesh.positions[v];
-      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) lap += weight(ring_list[k]) * mesh.positions[ring_list[k]];
+      for (std::uint32_t k = ring_start[v]; k < ring_start[v + 1]; ++k) lap += weight(k) * mesh.positions[ring_list[k]];
       c[0] -= w * lap.x;
       c[1] -= w * lap.y;
       c[2] -= w * lap.z;

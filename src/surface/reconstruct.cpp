@@ -43,12 +43,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kRingCapScale = 2.0;
 const double kUniformCapScale = std::sqrt(2.0);
 
-std::size_t loops_points(const std::vector<std::vector<Vec2>>& loops) {
-  std::size_t n = 0;
-  for (const auto& loop : loops) n += loop.size();
-  return n;
-}
-
 // One contour of the frame, in canonical form.
 struct Node {
   int slice = 0;                      // index into the sorted slices
@@ -837,6 +831,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         std::vector<std::uint32_t> id;
         for (int g : group) id.insert(id.end(), nodes[g].chain.begin(), nodes[g].chain.end());
         const double dir = top ? 1.0 : -1.0;
+        const std::size_t loop_ids = id.size();
         for (std::size_t k = id.size(); k < cap.points.size(); ++k) {
           id.push_back(b.add(from_plane(slices[s].plane, cap.points[k], dir * cap.height[k])));
           // Flat lids stay in their plane; domes keep their shape up to a smooth join with the wall.
@@ -857,7 +852,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         // slopes, across the contours: the dome comes out lower (torus volume −1.54 % at bound 2 even with
         // its rows scaled by 1/2). Scale-aware terms on the interior and its contours
         // (FairingOptions::scale_aware): −0.20 %.
-        if (!fillable && ring && id.size() > loops_points(loops)) {
+        if (ring && id.size() > loop_ids) {  // a ring cap is never filled
           scale_aware.resize(b.positions.size(), 0);
           for (std::uint32_t u : id) scale_aware[u] = 1;
         }

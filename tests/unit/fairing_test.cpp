@@ -65,9 +65,9 @@ TEST(Fairing, RowScaleWeighsTheTermsOfItsVertices) {
 }
 
 // Scale-aware terms (FairingOptions::scale_aware): the reference length scales every such term alike,
-// so where every term is scale-aware the minimiser stays; scaling the mesh and the reference together scales the result; they move the
-// minimiser away from the uniform one on a mesh whose edges differ; and a vertex on top of a neighbour
-// keeps its uniform term (no infinite weight). Their purpose, slopes matched across a change of mesh
+// so where every term is scale-aware the minimiser stays; scaling the mesh and the reference together
+// scales the result; they move the minimiser away from the uniform one on a mesh whose edges differ;
+// and a vertex on top of a neighbour keeps its uniform term (no infinite weight). Their purpose, slopes matched across a change of mesh
 // density, is measured on the torus's caps (ReconstructPhantoms.AccuracyVolumeAndQuality).
 TEST(Fairing, ScaleAwareTermsDependOnlyOnTheEdgesRatios) {
   const Tube tube = bumpy_tube(24, 13);
