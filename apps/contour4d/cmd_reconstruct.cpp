@@ -231,10 +231,10 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
                 "vertical deformation centred on the ridge (eq. 10, Table 1), then match and deform");
   app->add_flag("--biharmonic", args->biharmonic,
                 "frames whose contours all match the previous frame's one-to-one follow them by a biharmonic "
-                "displacement of the previous mesh (one sparse solve; much faster), unless that leaves the mesh over 0.2 mm "
-                "from a contour, an angle below 25 deg, fewer than 85% of angles in 40-80 deg or crossing triangles; "
-                "other frames as usual. Opt-in: on biv-me (strong basal contraction) a frame that falls back afterwards "
-                "(frame 6) keeps crossing triangles");
+                "displacement of the previous mesh (one sparse solve, no relaxation), unless that leaves the mesh over "
+                "0.2 mm from a contour, an angle below 25 deg, fewer than 85% of angles in 40-80 deg or crossing "
+                "triangles; other frames as usual. Opt-in: no faster overall (frames that fail the guard are done twice), "
+                "smaller smallest angles");
   app->add_option("--tiling", args->tiling,
                   "surface between slices: bands (default: optimal bands, bridges at branchings) or delaunay (Lim et "
                   "al.'s constrained Delaunay of the projected slices with chordal-axis lifting points)")

@@ -746,11 +746,11 @@ void vertical_predeformation(const Sequence& seq, const std::vector<Triangle>& t
 // cross it) is mapped onto frame t's contours: each section point goes to its closest point on frame t−1's
 // contour and on through that contour's match onto frame t's (Fig. 7). The displacement d then minimises
 // Σ|L d|² + w Σ_k |(1 − s_k) d_a + s_k d_b − δ_k|² (the section point k on edge (a, b) at s_k, δ_k its
-// move): smooth over the whole mesh, the sections onto the new contours. The system keeps its pattern, so
-// its ordering is computed once; each frame costs one numeric factorisation.
+// move): smooth over the whole mesh, the sections onto the new contours. A frame whose sections cut the same
+// edges at the same parameters as the last factorised one's (sections through chain vertices that stayed on
+// their planes) reuses its factorisation; any other frame costs one.
 struct BiharmonicStep {
-  Eigen::SimplicialLDLT<SparseMatrix> solver;
-  bool analysed = false;
+  SparseLdlt solver;  // SimplicialLDLT's factor bit for bit, factored faster (sparse_solve.h)
   std::vector<double> factored_for;  // the constraints' (a, b, s) of the factorised system
   double weight = 1e4;  // w, against LᵀL's diagonal of about 40
 
@@ -820,7 +820,7 @@ struct BiharmonicStep {
     // factorised frame (sections through vertices on the planes, which stay there), it is reused.
     std::vector<double> signature;
     for (const Constraint& c : cons) signature.insert(signature.end(), {double(c.a), double(c.b), c.s});
-    const bool refactor = !analysed || signature != factored_for;
+    const bool refactor = factored_for.empty() || signature != factored_for;
     SparseMatrix M;
     if (refactor) M = LtL;
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(x.size()), 3);
@@ -842,19 +842,13 @@ struct BiharmonicStep {
       }
     }
     if (refactor) {
-      if (!analysed) {
-        solver.analyzePattern(M);
-        analysed = true;
-      }
-      solver.factorize(M);
-      factored_for = signature;
-      if (solver.info() != Eigen::Success) {
+      if (!solver.compute(M)) {
         factored_for.clear();
         return false;
       }
+      factored_for = signature;
     }
-    const Eigen::MatrixXd d = solve_ldlt(solver, rhs);
-    if (solver.info() != Eigen::Success) return false;
+    const Eigen::MatrixXd d = solver.solve(rhs);
     y.resize(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) {
       const auto r = static_cast<Eigen::Index>(i);

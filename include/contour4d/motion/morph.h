@@ -119,8 +119,8 @@ struct MorphOptions {
                                    //!< relaxation; then the contour fit (contour_fit). A frame that then is farther than
                                    //!< fit_goal_mm from a contour sample, has an angle below retry_min_angle_deg, fewer
                                    //!< than retry_min_good_share of its angles in 40–80° or crossing triangles is done
-                                   //!< the standard way. Off by default (biv-me: frame 6, on the standard path after
-                                   //!< such frames, keeps crossing triangles)
+                                   //!< the standard way. Off by default: no faster overall (frames that fail the guard
+                                   //!< are done twice) and smaller smallest angles (docs/algorithms/morph.md)
 };
 
 //! A 2D contour topology change on one slice between two frames.
