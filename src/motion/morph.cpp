@@ -38,6 +38,7 @@
 #include "contour4d/metrics/topology.h"
 #include "contour4d/motion/contour_fit.h"
 #include "contour4d/motion/contour_matching.h"
+#include "contour4d/motion/corner_snap.h"
 #include "contour4d/motion/rbf.h"
 #include "contour4d/motion/section.h"
 #include "contour4d/motion/vertical_deformation.h"
@@ -1419,39 +1420,17 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
             std::vector<std::vector<std::uint32_t>> on_line(lines.size());
             for (std::size_t i = 0; i < nv; ++i)
               if (on_contour[i]) on_line[static_cast<std::size_t>(slide_line[i])].push_back(static_cast<std::uint32_t>(i));
-            const double cos_corner = std::cos(opt.corner_angle_deg * 3.14159265358979323846 / 180.0);
-            for (std::size_t l = 0; l < lines.size(); ++l) {
-              const std::vector<Vec3>& L = lines[l];
-              const std::size_t n = L.size();
-              for (std::size_t k = 0; k < n && !on_line[l].empty(); ++k) {
-                const Vec3 a = L[k] - L[(k + n - 1) % n], b = L[(k + 1) % n] - L[k];
-                const double la = norm(a), lb = norm(b);
-                if (la <= 0 || lb <= 0 || dot(a, b) > cos_corner * la * lb) continue;  // turns less
-                // The nearest vertices up to two edges away, nearest first; the first whose ring keeps 20° (the
-                // repair below works around it) moves.
-                // A retry puts no chain vertex on its contour, so few lie on it (plane snaps): there any vertex
-                // near the corner of a contour that has one may take it (biv-me frame 6: a basal contour of 19 points turning by 108°,
-                // which the fit alone left 0.08–0.36 mm off as the frames before it changed in their last bits).
-                std::vector<std::pair<double, std::uint32_t>> near;
-                auto consider = [&](std::uint32_t v) {
-                  const double d = distance(x[v], L[k]);
-                  if (d <= 2.0 * median_edge) near.push_back({d, v});
-                };
-                if (attempt == 0)
-                  for (std::uint32_t v : on_line[l]) consider(v);
-                else
-                  for (std::uint32_t v = 0; v < nv; ++v) consider(v);
-                std::sort(near.begin(), near.end());
-                const std::size_t tries = attempt == 0 ? opt.corner_candidates : 1;  // the retry: the nearest only
-                for (std::size_t c = 0; c < std::min(near.size(), tries); ++c) {
-                  const std::uint32_t v = near[c].second;
-                  if (fixed[v] || !harmless(v, L[k], 20.0)) continue;
-                  x[v] = L[k];
-                  fixed[v] = 1;
-                  break;
-                }
-              }
-            }
+            // The nearest vertices up to two edges away, nearest first; the first whose ring keeps 20° (the repair
+            // below works around it) moves. A retry puts no chain vertex on its contour, so few lie on it (plane
+            // snaps): there any vertex near the corner may take it, the nearest only (biv-me frame 6: a basal
+            // contour of 19 points turning by 108°, which the fit alone left 0.08–0.36 mm off as the frames before
+            // it changed in their last bits).
+            CornerSnapOptions co;
+            co.corner_angle_deg = opt.corner_angle_deg;
+            co.reach = 2.0 * median_edge;
+            co.tries = attempt == 0 ? opt.corner_candidates : 1;
+            co.any_vertex = attempt > 0;
+            snap_corners(x, lines, on_line, fixed, [&](std::uint32_t v, Vec3 corner) { return harmless(v, corner, 20.0); }, co);
           }
           // 4. The few triangles the relaxation leaves thin (saddles of splitting contours): their vertices
           //    move within the frame's surface (along their contour when on one) to maximise their ring's

@@ -3,6 +3,7 @@ target_sources(contour4d PRIVATE
   motion/rbf.cpp
   motion/contour_fit.cpp
   motion/contour_matching.cpp
+  motion/corner_snap.cpp
   motion/section.cpp
   motion/morph.cpp
   motion/simd_avx.cpp

@@ -6,6 +6,7 @@
 
 #include "contour4d/core/errors.h"
 #include "contour4d/motion/contour_matching.h"
+#include "contour4d/motion/corner_snap.h"
 #include "contour4d/motion/rbf.h"
 
 namespace c4d {
@@ -147,6 +148,90 @@ TEST(ContourMatching, PointsBetweenTargetsFollowTheTargetPolygon) {
     EXPECT_LT(between_worst, 1e-9);
     EXPECT_GT(chord_worst, 0.01);  // the case the function is for
   }
+}
+
+// A 10 mm square in z = 0 with a point in the middle of each side: four 90° corners, no other turn.
+std::vector<Vec3> square_line() {
+  return {{0, 0, 0}, {5, 0, 0}, {10, 0, 0}, {10, 5, 0}, {10, 10, 0}, {5, 10, 0}, {0, 10, 0}, {0, 5, 0}};
+}
+
+// A retry's options: any vertex near a corner is a candidate, `tries` of them.
+CornerSnapOptions retry_options(std::size_t tries) {
+  CornerSnapOptions o;
+  o.any_vertex = true;
+  o.tries = tries;
+  return o;
+}
+
+TEST(CornerSnap, RetryTakesTheNearestVertexOffTheContourOntoEachCorner) {
+  const std::vector<std::vector<Vec3>> lines{square_line()};
+  // Per corner: a vertex 0.5 mm off it (above the plane) and one 1.2 mm off; vertex 8 on the contour, mid-side.
+  const std::vector<Vec3> corners{{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}};
+  std::vector<Vec3> x;
+  for (const Vec3& c : corners) {
+    x.push_back(c + Vec3{0.3, 0.3, 0.3});
+    x.push_back(c + Vec3{0.0, 0.0, 1.2});
+  }
+  x.push_back({5, 0, 0});
+  const std::vector<std::vector<std::uint32_t>> on_line{{8}};
+  auto always = [](std::uint32_t, Vec3) { return true; };
+  CornerSnapOptions o = retry_options(1);
+  std::vector<Vec3> y = x;
+  std::vector<char> fixed(x.size(), 0);
+  EXPECT_EQ(snap_corners(y, lines, on_line, fixed, always, o), 4u);
+  for (std::size_t c = 0; c < 4; ++c) {
+    EXPECT_EQ(y[2 * c], corners[c]);  // exactly on the corner
+    EXPECT_EQ(fixed[2 * c], 1);
+    EXPECT_EQ(y[2 * c + 1], x[2 * c + 1]);
+    EXPECT_EQ(fixed[2 * c + 1], 0);
+  }
+  EXPECT_EQ(y[8], x[8]);
+
+  // A first try takes only vertices on the contour: the one on it is 5 mm from every corner.
+  o.any_vertex = false;
+  y = x;
+  std::fill(fixed.begin(), fixed.end(), 0);
+  EXPECT_EQ(snap_corners(y, lines, on_line, fixed, always, o), 0u);
+  EXPECT_EQ(y, x);
+
+  // A contour with no vertex on it is left alone, whatever the candidates.
+  o.any_vertex = true;
+  EXPECT_EQ(snap_corners(y, lines, {{}}, fixed, always, o), 0u);
+  EXPECT_EQ(y, x);
+}
+
+TEST(CornerSnap, RefusedOrFixedCandidatesPassToTheNextWithinTries) {
+  const std::vector<std::vector<Vec3>> lines{square_line()};
+  std::vector<Vec3> x{{0.3, 0.3, 0.3}, {0.0, 0.0, 1.2}, {5, 0, 0}};
+  const std::vector<std::vector<std::uint32_t>> on_line{{2}};
+  auto not_nearest = [](std::uint32_t v, Vec3) { return v != 0; };
+  CornerSnapOptions o = retry_options(1);
+  std::vector<Vec3> y = x;
+  std::vector<char> fixed(x.size(), 0);
+  EXPECT_EQ(snap_corners(y, lines, on_line, fixed, not_nearest, o), 0u);
+  o.tries = 2;
+  EXPECT_EQ(snap_corners(y, lines, on_line, fixed, not_nearest, o), 1u);
+  EXPECT_EQ(y[1], (Vec3{0, 0, 0}));
+  EXPECT_EQ(y[0], x[0]);
+  // A fixed vertex is passed over too.
+  y = x;
+  std::fill(fixed.begin(), fixed.end(), 0);
+  fixed[0] = 1;
+  EXPECT_EQ(snap_corners(y, lines, on_line, fixed, [](std::uint32_t, Vec3) { return true; }, o), 1u);
+  EXPECT_EQ(y[0], x[0]);
+  EXPECT_EQ(y[1], (Vec3{0, 0, 0}));
+}
+
+TEST(CornerSnap, GentleTurnsAreNoCorners) {
+  // A 36-gon turns by 10° at each point, under the 30° of a corner.
+  std::vector<Vec3> circle;
+  for (int i = 0; i < 36; ++i) circle.push_back({10 * std::cos(i * std::numbers::pi / 18), 10 * std::sin(i * std::numbers::pi / 18), 0});
+  std::vector<Vec3> x{{10.2, 0.1, 0.2}, circle[9]};
+  std::vector<char> fixed(x.size(), 0);
+  const CornerSnapOptions o = retry_options(3);
+  std::vector<Vec3> y = x;
+  EXPECT_EQ(snap_corners(y, {circle}, {{1}}, fixed, [](std::uint32_t, Vec3) { return true; }, o), 0u);
+  EXPECT_EQ(y, x);
 }
 
 }  // namespace
