@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 namespace c4d {
@@ -13,12 +14,13 @@ namespace c4d {
 std::size_t snap_corners(std::vector<Vec3>& x, const std::vector<std::vector<Vec3>>& lines,
                          const std::vector<std::vector<std::uint32_t>>& on_line, std::vector<char>& fixed,
                          const std::function<bool(std::uint32_t, Vec3)>& harmless, const CornerSnapOptions& opt) {
-  const double cos_corner = std::cos(opt.corner_angle_deg * 3.14159265358979323846 / 180.0);
+  const double cos_corner = std::cos(opt.corner_angle_deg * std::numbers::pi / 180.0);
   std::size_t moved = 0;
   for (std::size_t l = 0; l < lines.size() && l < on_line.size(); ++l) {
+    if (on_line[l].empty()) continue;  // no vertex on this contour
     const std::vector<Vec3>& L = lines[l];
     const std::size_t n = L.size();
-    for (std::size_t k = 0; k < n && !on_line[l].empty(); ++k) {
+    for (std::size_t k = 0; k < n; ++k) {
       const Vec3 a = L[k] - L[(k + n - 1) % n], b = L[(k + 1) % n] - L[k];
       const double la = norm(a), lb = norm(b);
       if (la <= 0 || lb <= 0 || dot(a, b) > cos_corner * la * lb) continue;  // turns less
