@@ -14,6 +14,7 @@
 #include "contour4d/io/input.h"
 #include "contour4d/io/mesh_output.h"
 #include "contour4d/io/output_dir.h"
+#include "contour4d/metrics/result_check.h"
 #include "contour4d/motion/reconstruct4d.h"
 #include "progress.h"
 
@@ -37,6 +38,7 @@ struct ReconstructArgs {
   bool no_rows = false;
   std::string tiling = "bands";
   std::string remesher = "auto";
+  std::string keep_failed;
 };
 
 nlohmann::json connections_json(const std::vector<Connection>& cs) {
@@ -53,6 +55,49 @@ nlohmann::json surface_json(const SurfaceReport& r) {
           {"vertices", r.vertices},   {"triangles", r.triangles}, {"closed", r.closed},
           {"self_intersects", r.self_intersections_checked ? nlohmann::json(r.self_intersects) : nlohmann::json()}, {"euler", r.euler}, {"components", r.components},
           {"volume_mm3", r.volume},   {"warnings", r.warnings},  {"connections", connections_json(r.connections)}};
+}
+
+// The contours each output frame was built from (one structure; --frame: that frame only), for the
+// volume comparison of the output gate.
+Sequence checked_contours(const Sequence& seq, const std::string& label, int frame) {
+  Sequence sub = label.empty() ? seq : select_label(seq, label);
+  if (frame >= 0) sub.frames = {sub.frames[static_cast<std::size_t>(frame)]};
+  return sub;
+}
+
+nlohmann::json checks_json(const ResultCheck& check) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const FrameCheck& c : check.frames)
+    a.push_back({{"frame", c.frame}, {"ok", c.ok()}, {"volume_mm3", c.volume}, {"simpson_volume_mm3", c.simpson_volume},
+                 {"crossing_triangle_pairs", c.self_intersections}, {"faults", c.faults}});
+  return a;
+}
+
+// The output gate: every frame checked before anything is written. A failing result is written only
+// where --keep-failed asks, marked FAILED, and the run ends with ErrorCode::InvalidResult.
+void check_before_writing(const ReconstructArgs& a, const Sequence& seq, const std::string& label, bool closed,
+                          const MeshSequence& result, nlohmann::json& report) {
+  ResultCheckOptions opt;
+  opt.closed = closed;
+  ResultCheck check = check_result(result, checked_contours(seq, label, a.frame), opt);
+  if (a.frame >= 0)
+    for (FrameCheck& c : check.frames) c.frame = a.frame;
+  report["checks"] = {{"ok", check.ok()}, {"volume_tolerance", opt.volume_tolerance}, {"frames", checks_json(check)}};
+  if (check.ok()) return;
+  std::string hint = fmt::format("nothing was written to {}", a.output);
+  if (!a.keep_failed.empty()) {
+    OutputDir failed(a.keep_failed);
+    report["FAILED"] = check.summary();
+    write_mesh_sequence(failed, result, fmt::format("FAILED contour4d reconstruct {}", a.input));
+    failed.write("report.json", report.dump(2) + "\n");
+    failed.write("FAILED.txt", "This result FAILED its checks and is kept only for debugging:\n" + check.summary() + "\n");
+    failed.commit();
+    hint += fmt::format("; the failed result is in {} (marked FAILED)", a.keep_failed);
+  } else {
+    hint += "; --keep-failed DIR writes the failed result there for debugging";
+  }
+  throw SolverError(ErrorCode::InvalidResult, Location{a.input},
+                    "the reconstruction failed its checks: " + check.summary(), hint);
 }
 
 int run_reconstruct(const ReconstructArgs& a) {
@@ -79,6 +124,7 @@ int run_reconstruct(const ReconstructArgs& a) {
         a.remesher == "fast" ? RemeshEngine::Fast : RemeshEngine::Cgal;
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
   opt.surface.cap_max_fill = a.cap_fill;
+  opt.all_frames = a.method == "carry" ? AllFramesMethod::Carry : AllFramesMethod::Morph;
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
   opt.morph.pin_spacing = a.pin_spacing;
   opt.morph.vertical_deformation = a.vertical;
@@ -157,6 +203,7 @@ int run_reconstruct(const ReconstructArgs& a) {
                                s.last_frame, s.contours_below, s.contours_above);
   }
   bar.finish();
+  check_before_writing(a, seq, opt.surface.label, opt.surface.caps != CapStyle::Open, result, report);
 
   std::vector<double> volumes;
   for (std::size_t f = 0; f < result.positions.size(); ++f) volumes.push_back(signed_volume(result.frame(f)));
@@ -218,9 +265,10 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   app->add_option("--method", args->method,
-                  "deformation: rbf-project (RBF + projection on each frame's surface) or rbf (the paper's RBF only)")
+                  "all frames: carry (every frame on its own, in parallel: frame 0's mesh onto the frame's own surface), "
+                  "rbf-project (frame after frame: RBF + projection on each frame's surface) or rbf (the paper's RBF only)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"rbf-project", "rbf"}));
+      ->check(CLI::IsMember({"carry", "rbf-project", "rbf"}));
   app->add_option("--pin-spacing", args->pin_spacing,
                   "0 (default): later frames fit their contours through each frame's own surface; > 0: also hold "
                   "frame-0 contour vertices on later contours, at least this x the median edge apart (exact "
@@ -256,6 +304,10 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
                 "apart: 1.9-3.2x slower per frame, slightly more even triangles (left heart ES 96.5 against 92.2% of "
                 "angles in 40-80 deg), as close to the true surface (ES 0.018 against 0.017 mm mean)");
   app->add_option("--threads", args->threads, "worker threads (0: all cores); output does not depend on it");
+  app->add_option("--keep-failed", args->keep_failed,
+                  "every frame is checked before writing (closed, manifold, outward, no crossing triangles, volume near "
+                  "Simpson's discs); a failing result exits with code 26 and writes nothing, or with this option writes "
+                  "it to this folder marked FAILED, for debugging");
   commands.push_back({app, [args] { return run_reconstruct(*args); }});
 }
 

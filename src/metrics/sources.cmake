@@ -6,6 +6,7 @@ target_sources(contour4d PRIVATE
   metrics/conformity.cpp
   metrics/quality.cpp
   metrics/topology.cpp
+  metrics/result_check.cpp
   metrics/correspondence.cpp
   metrics/volume.cpp
   metrics/evaluation.cpp)

@@ -43,6 +43,7 @@
 #include "contour4d/motion/section.h"
 #include "contour4d/motion/vertical_deformation.h"
 #include "contour4d/surface/angle_repair.h"
+#include "contour4d/motion/chains.h"
 #include "contour4d/surface/surface_projector.h"
 #include "simd_avx_internal.h"
 #include "sweep_lanes_internal.h"
@@ -123,64 +124,6 @@ std::string event_kind(int before, int after) {
   return "change";
 }
 
-// A loop of frame-0 vertices lying on one slice plane: the mesh's copy of an input contour.
-struct Chain {
-  int slice = 0;
-  Plane plane;
-  std::vector<std::uint32_t> loop;
-};
-
-// Frame 0's contour chains: edges with both ends on a slice plane whose two triangles are not
-// both in that plane (so flat caps' interiors are excluded), chained into closed loops.
-std::vector<Chain> find_chains(const Sequence& seq, const TriangleMesh& mesh) {
-  std::map<int, const Slice*> planes;
-  for (const Frame& f : seq.frames)
-    for (const Slice& s : f.slices) planes.emplace(s.id, &s);
-  double scale = 1.0;
-  for (const Vec3& p : mesh.positions) scale = std::max(scale, std::abs(dot(p, seq.normal)));
-  const double tol = 1e-7 * scale;
-  std::vector<Chain> chains;
-  for (const auto& [id, any] : planes) {
-    const Plane pl = slice_plane(seq, *any);
-    std::vector<char> on(mesh.positions.size());
-    for (std::size_t i = 0; i < on.size(); ++i) on[i] = std::abs(signed_distance(pl, mesh.positions[i])) < tol;
-    // On-plane edges of triangles that are not entirely on the plane, oriented as the triangle
-    // above the plane runs them (a triangle below runs the same edge the other way).
-    std::map<std::uint32_t, std::vector<std::uint32_t>> succ;
-    for (const Triangle& t : mesh.triangles) {
-      if (on[t[0]] && on[t[1]] && on[t[2]]) continue;
-      for (int k = 0; k < 3; ++k) {
-        std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
-        const std::uint32_t c = t[static_cast<std::size_t>((k + 2) % 3)];
-        if (!on[a] || !on[b]) continue;
-        if (signed_distance(pl, mesh.positions[c]) < 0) std::swap(a, b);
-        auto& s = succ[a];
-        if (std::find(s.begin(), s.end(), b) == s.end()) s.push_back(b);
-      }
-    }
-    std::set<std::uint32_t> used;
-    for (const auto& [v0, unused] : succ) {
-      if (used.count(v0)) continue;
-      std::vector<std::uint32_t> loop;
-      std::uint32_t v = v0;
-      bool closed = false;
-      while (true) {
-        if (used.count(v)) {
-          closed = (v == v0);
-          break;
-        }
-        used.insert(v);
-        loop.push_back(v);
-        const auto it = succ.find(v);
-        if (it == succ.end() || it->second.size() != 1) break;  // touching contours: not a simple loop
-        v = it->second.front();
-      }
-      if (closed && loop.size() >= 3) chains.push_back({id, pl, std::move(loop)});
-    }
-  }
-  return chains;
-}
-
 struct ChainTarget {
   std::uint32_t vertex;
   Vec3 position;
@@ -243,21 +186,6 @@ Vec3 closest_on_loop(const std::vector<Vec3>& loop, Vec3 q, std::int32_t& hint) 
 // fills `target` for every vertex of a matched chain and `lines` with the matched contours. Reports
 // slices whose contour count changed; `unmatched` gets them, those changing into the next frame, and
 // those with a chain left without partner.
-// The contour j that contour i matches one-to-one: i's only partner over the threshold is j, and j's only
-// partner is i (sim[i][j]: similarity index, eq. 5); -1 when there is none.
-int one_to_one_partner(const std::vector<std::vector<double>>& sim, std::size_t i, double threshold) {
-  int partner = -1, count = 0;
-  for (std::size_t j = 0; j < sim[i].size(); ++j)
-    if (sim[i][j] > threshold) {
-      partner = static_cast<int>(j);
-      ++count;
-    }
-  if (count != 1) return -1;
-  int back = 0;
-  for (const std::vector<double>& row : sim) back += row[static_cast<std::size_t>(partner)] > threshold;
-  return back == 1 ? partner : -1;
-}
-
 void match_chains(const Sequence& seq, const std::vector<Chain>& chains, const std::vector<Vec3>& x, int frame,
                   const MorphOptions& opt, double pin_spacing, double slide_spacing, std::vector<ChainTarget>& targets,
                   std::vector<std::vector<Vec3>>& lines, std::set<int>& unmatched, MorphFrameReport& fr,

@@ -14,6 +14,61 @@
 
 namespace c4d {
 
+namespace {
+
+// Slices whose contour count changes between consecutive frames (Miara et al. Fig. 14's events).
+std::vector<SliceEvent> count_events(const Sequence& seq) {
+  std::vector<SliceEvent> events;
+  std::map<int, int> before;
+  for (std::size_t f = 0; f < seq.frames.size(); ++f) {
+    std::map<int, int> now;
+    for (const Slice& s : seq.frames[f].slices) now[s.id] = static_cast<int>(s.contours.size());
+    if (f > 0) {
+      std::map<int, std::pair<int, int>> change;
+      for (const auto& [id, c] : before) change[id].first = c;
+      for (const auto& [id, c] : now) change[id].second = c;
+      for (const auto& [id, ba] : change)
+        if (ba.first != ba.second) {
+          const auto [b, a] = ba;
+          const char* kind = b == 0 ? "appear" : a == 0 ? "vanish" : (b == 1 && a > 1) ? "split" : (b > 1 && a == 1) ? "merge" : "change";
+          events.push_back({static_cast<int>(f), id, kind, b, a});
+        }
+    }
+    before = std::move(now);
+  }
+  return events;
+}
+
+// AllFramesMethod::Carry: frame 0's surface, then every frame on its own (carry.h).
+MeshSequence carry_4d(const Sequence& seq, const Reconstruct4DOptions& options, Reconstruct4DReport& rep,
+                      const std::function<TriangleMesh(std::size_t)>& build) {
+  const std::size_t n = seq.frames.size();
+  if (options.progress) options.progress("frame 0", 0, 1);
+  const TriangleMesh frame0 = build(0);
+  std::mutex mutex;
+  int done = 0;
+  auto own = [&](std::size_t t) {
+    TriangleMesh m = build(t);
+    if (options.progress) {
+      std::lock_guard<std::mutex> lock(mutex);
+      options.progress("frames", ++done, static_cast<int>(n) - 1);
+    }
+    return m;
+  };
+  MeshSequence out = carry_frames(seq, frame0, own, options.carry, &rep.carry);
+  rep.morph.frames.assign(n, {});
+  for (std::size_t t = 0; t < n; ++t) {
+    rep.morph.frames[t].matched = rep.carry.frames[t].matched_contours;
+    rep.morph.frames[t].projection_mean = rep.carry.frames[t].projection_mean;
+    rep.morph.frames[t].projection_max = rep.carry.frames[t].projection_max;
+  }
+  rep.morph.events = count_events(seq);
+  rep.morph.submeshes = submesh_lifetimes(seq);
+  return out;
+}
+
+}  // namespace
+
 MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& options, Reconstruct4DReport* report) {
   const std::size_t n = seq.frames.size();
   if (n == 0) throw InvalidInput(ErrorCode::EmptyFrame, Location{seq.source}, "the input holds no frame");
@@ -53,6 +108,7 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
     }
     return reconstruct_frame(seq, static_cast<int>(f), so, &rep.surfaces[f]);
   };
+  if (options.all_frames == AllFramesMethod::Carry) return carry_4d(seq, options, rep, build);
   // The surfaces are built by tasks that take the frames in increasing order, while this thread morphs
   // (from frame 0's surface on) and builds a frame itself when the morph needs one nobody has taken yet:
   // the morph overlaps the building. Each surface depends on its frame only, so the result does not

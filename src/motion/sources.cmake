@@ -5,6 +5,8 @@ target_sources(contour4d PRIVATE
   motion/contour_matching.cpp
   motion/corner_snap.cpp
   motion/section.cpp
+  motion/chains.cpp
+  motion/carry.cpp
   motion/morph.cpp
   motion/simd_avx.cpp
   motion/reconstruct4d.cpp)

@@ -30,6 +30,8 @@ enum class ErrorCode : int {
   OutputNotWritable = 23, //!< output folder cannot be created or written
   NotImplemented = 24,    //!< the requested stage is not available yet
   BadMesh = 25,           //!< a mesh file that cannot be read or is inconsistent
+  InvalidResult = 26,     //!< a reconstructed frame failed its checks before writing (not closed or manifold,
+                          //!< inward, self-intersecting, volume far from Simpson's discs): nothing is written
 };
 
 //! Where in an input a problem was found; unset fields are omitted from messages.

@@ -8,13 +8,22 @@
 
 #include "contour4d/core/mesh.h"
 #include "contour4d/core/stack.h"
+#include "contour4d/motion/carry.h"
 #include "contour4d/motion/morph.h"
 #include "contour4d/surface/reconstruct.h"
 
 namespace c4d {
 
+//! How frames after 0 are built.
+enum class AllFramesMethod {
+  Carry,  //!< every frame on its own from frame 0's mesh onto the frame's own surface (carry.h): in parallel
+  Morph,  //!< frame after frame, each from the one before (morph.h; MorphOptions::method picks the paper's RBF)
+};
+
 //! Options of the 4D reconstruction.
 struct Reconstruct4DOptions {
+  AllFramesMethod all_frames = AllFramesMethod::Morph;  //!< the all-frames stage
+  CarryOptions carry;      //!< AllFramesMethod::Carry
   SurfaceOptions surface;  //!< the one-frame surface (frame 0, and each frame's target for RbfProject); frame 0's
                            //!< small-angle repair aims at morph.angle_repair.target_deg (32°) instead of
                            //!< surface.angle_repair's (28°): the carried mesh starts where the morph keeps it
@@ -41,7 +50,8 @@ struct Reconstruct4DOptions {
 //! What reconstruct_4d did.
 struct Reconstruct4DReport {
   std::vector<SurfaceReport> surfaces;  //!< per frame (the frame's own surface)
-  MorphReport morph;
+  MorphReport morph;  //!< AllFramesMethod::Carry fills its frames' matched counts, events and sub-meshes
+  CarryReport carry;  //!< AllFramesMethod::Carry
 };
 
 //! Builds the 4D mesh of `seq` (one label). Frames' own surfaces are built by TBB tasks in frame order

@@ -1,0 +1,335 @@
+// All frames, each on its own (carry.h): Miara et al. §III.D–E (one base mesh, per-frame
+// displacements) with Lim et al. 2014's contour matching (Fig. 7) for the chains that keep a partner,
+// a thin-plate displacement (Botsch & Sorkine 2008) for the rest, then tangential relaxation and a
+// sheet-aware projection onto the frame's own surface.
+#include "contour4d/motion/carry.h"
+
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <tbb/parallel_for.h>
+
+#include "contour4d/connect/similarity.h"
+#include "contour4d/core/errors.h"
+#include "contour4d/core/sparse_solve.h"
+#include "contour4d/motion/chains.h"
+#include "contour4d/motion/contour_matching.h"
+#include "contour4d/surface/surface_projector.h"
+
+namespace c4d {
+
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using Rings = std::vector<std::vector<std::uint32_t>>;
+
+// Each vertex's neighbours over the mesh's edges, sorted.
+Rings vertex_rings(std::size_t n, const std::vector<Triangle>& tris) {
+  Rings r(n);
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      r[t[static_cast<std::size_t>(k)]].push_back(t[static_cast<std::size_t>((k + 1) % 3)]);
+      r[t[static_cast<std::size_t>((k + 1) % 3)]].push_back(t[static_cast<std::size_t>(k)]);
+    }
+  for (auto& ring : r) {
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  }
+  return r;
+}
+
+// Q = LᵀL of the uniform ("umbrella") Laplacian (L x)_i = x_i − mean of i's neighbours.
+SparseMatrix bilaplacian(const Rings& rings) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t i = 0; i < rings.size(); ++i) {
+    t.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);
+    for (std::uint32_t j : rings[i])
+      t.emplace_back(static_cast<int>(i), static_cast<int>(j), -1.0 / static_cast<double>(rings[i].size()));
+  }
+  const auto n = static_cast<int>(rings.size());
+  SparseMatrix L(n, n);
+  L.setFromTriplets(t.begin(), t.end());
+  return SparseMatrix(L.transpose() * L);
+}
+
+// Where frame t puts frame 0's matched chains: a target per fixed vertex.
+struct FrameTargets {
+  std::vector<char> fixed;  // per vertex
+  std::vector<Vec3> target;  // per vertex (meaningful where fixed)
+  int matched = 0, unmatched = 0;
+};
+
+std::vector<Vec2> flatten(const Plane& pl, const std::vector<Vec3>& pts) {
+  std::vector<Vec2> out;
+  out.reserve(pts.size());
+  for (const Vec3& p : pts) out.push_back(to_plane(pl, p));
+  return out;
+}
+
+double loop_length(const std::vector<Vec2>& p) {
+  double len = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) len += norm(p[(k + 1) % p.size()] - p[k]);
+  return len;
+}
+
+// One slice: frame 0's chains there against frame t's contours there, one-to-one by similarity; each
+// matched chain mapped onto its contour by arc length (every k-th vertex where the contour shrank).
+void match_slice(const std::vector<const Chain*>& chains, const Slice* slice, const std::vector<Vec3>& x0,
+                 const CarryOptions& opt, FrameTargets& out) {
+  if (!slice) {
+    out.unmatched += static_cast<int>(chains.size());
+    return;
+  }
+  const Plane& pl = chains.front()->plane;
+  std::vector<std::vector<Vec2>> a, b;
+  for (const Chain* c : chains) {
+    std::vector<Vec3> pts;
+    for (std::uint32_t v : c->loop) pts.push_back(x0[v]);
+    a.push_back(flatten(pl, pts));
+  }
+  for (const Contour& c : slice->contours) b.push_back(flatten(pl, c.points));
+  std::vector<std::vector<double>> sim(a.size(), std::vector<double>(b.size()));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) sim[i][j] = contour_similarity(a[i], b[j]);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const int partner = one_to_one_partner(sim, i, opt.threshold);
+    if (partner < 0) {
+      ++out.unmatched;
+      continue;
+    }
+    const ContourMatch m = match_contour(a[i], b[static_cast<std::size_t>(partner)]);
+    const double shrink = loop_length(a[i]) / std::max(1e-9, loop_length(m.targets));
+    const std::size_t stride = shrink > opt.shrink_ratio ? static_cast<std::size_t>(std::ceil(shrink - 0.25)) : 1;
+    const std::vector<std::uint32_t>& loop = chains[i]->loop;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      if (k % stride != 0 || (stride > 1 && k + stride / 2 >= loop.size())) continue;
+      out.fixed[loop[k]] = 1;
+      out.target[loop[k]] = from_plane(pl, m.targets[k]);
+    }
+    ++out.matched;
+  }
+}
+
+FrameTargets match_frame(const Sequence& seq, const std::map<int, std::vector<const Chain*>>& by_slice,
+                         const std::vector<Vec3>& x0, std::size_t t, const CarryOptions& opt) {
+  FrameTargets out;
+  out.fixed.assign(x0.size(), 0);
+  out.target.assign(x0.size(), Vec3{});
+  const Frame& frame = seq.frames[t];
+  for (const auto& [id, chains] : by_slice) {
+    const auto it = std::find_if(frame.slices.begin(), frame.slices.end(), [id = id](const Slice& s) { return s.id == id; });
+    match_slice(chains, it == frame.slices.end() ? nullptr : &*it, x0, opt, out);
+  }
+  return out;
+}
+
+// The thin-plate system of one set of fixed vertices: Q restricted to the free vertices, factored once.
+struct ThinPlate {
+  std::vector<int> column;  // per vertex: its column among the free vertices, −1 when fixed
+  SparseLdlt ldlt;
+};
+
+void factor(const SparseMatrix& q, const std::vector<char>& fixed, ThinPlate& tp) {
+  tp.column.assign(fixed.size(), -1);
+  int nf = 0;
+  for (std::size_t v = 0; v < fixed.size(); ++v)
+    if (!fixed[v]) tp.column[v] = nf++;
+  std::vector<Eigen::Triplet<double>> lower;
+  for (int c = 0; c < q.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(q, c); it; ++it) {
+      const int i = tp.column[static_cast<std::size_t>(it.row())], j = tp.column[static_cast<std::size_t>(it.col())];
+      if (i >= 0 && j >= 0 && i >= j) lower.emplace_back(i, j, it.value());
+    }
+  // A component with no fixed vertex would make the system singular: a tiny pull to zero displacement.
+  for (int i = 0; i < nf; ++i) lower.emplace_back(i, i, 1e-9);
+  SparseMatrix a(nf, nf);
+  a.setFromTriplets(lower.begin(), lower.end());
+  if (nf > 0 && !tp.ldlt.compute(a))
+    throw SolverError(ErrorCode::Internal, {}, "carry_frames: the thin-plate system cannot be factored");
+}
+
+// Frame 0's positions plus the thin-plate displacement that puts the fixed vertices on their targets.
+std::vector<Vec3> thin_plate_guess(const SparseMatrix& q, const ThinPlate& tp, const std::vector<Vec3>& x0,
+                                   const FrameTargets& ft) {
+  const auto n = static_cast<Eigen::Index>(x0.size());
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n, 3);
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (ft.fixed[static_cast<std::size_t>(v)]) {
+      const Vec3 e = ft.target[static_cast<std::size_t>(v)] - x0[static_cast<std::size_t>(v)];
+      d.row(v) << e.x, e.y, e.z;
+    }
+  std::vector<Vec3> x = x0;
+  for (std::size_t v = 0; v < x.size(); ++v)
+    if (ft.fixed[v]) x[v] = ft.target[v];
+  const Eigen::MatrixXd qd = q * d;
+  Eigen::Index nf = 0;
+  for (int c : tp.column) nf += c >= 0;
+  if (nf == 0) return x;
+  Eigen::MatrixXd rhs(nf, 3);
+  for (std::size_t v = 0; v < x.size(); ++v)
+    if (tp.column[v] >= 0) rhs.row(tp.column[v]) = -qd.row(static_cast<Eigen::Index>(v));
+  const Eigen::MatrixXd free = tp.ldlt.solve(rhs);
+  for (std::size_t v = 0; v < x.size(); ++v)
+    if (tp.column[v] >= 0) {
+      const auto r = tp.column[v];
+      x[v] = x0[v] + Vec3{free(r, 0), free(r, 1), free(r, 2)};
+    }
+  return x;
+}
+
+// Area-weighted vertex normals (unit; zero where undefined).
+std::vector<Vec3> vertex_normals(const std::vector<Vec3>& x, const std::vector<Triangle>& tris) {
+  std::vector<Vec3> n(x.size(), Vec3{});
+  for (const Triangle& t : tris) {
+    const Vec3 c = cross(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]);
+    for (std::uint32_t v : t) n[v] += c;
+  }
+  for (Vec3& v : n) {
+    const double l = norm(v);
+    v = l > 0 ? v / l : Vec3{};
+  }
+  return n;
+}
+
+// Sheet-aware projection of the free vertices onto the frame's surface. A vertex without a hint asks the
+// tree for its closest point; where that faces away (another sheet), it walks instead from a neighbour
+// that landed, which stays on the neighbour's sheet. Vertices that find no landing keep their place.
+// Returns the number of vertices left off the surface.
+std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixed, const Rings& rings,
+                             const std::vector<Triangle>& tris, const SurfaceProjector& surface,
+                             std::vector<std::int32_t>& hints, double sheet_cos, std::vector<double>* moved = nullptr) {
+  const std::vector<Vec3> normals = vertex_normals(x, tris);
+  std::vector<char> landed(x.size(), 0);
+  std::vector<Vec3> p = x;
+  auto try_land = [&](std::size_t v, std::int32_t hint, bool tree) {
+    Vec3 nq{};
+    const Vec3 q = tree ? surface.closest(x[v], &nq, &hint) : surface.walk(x[v], &nq, &hint);
+    if (!(dot(nq, normals[v]) >= sheet_cos)) return false;
+    p[v] = q;
+    hints[v] = hint;
+    landed[v] = 1;
+    return true;
+  };
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    if (fixed[v]) continue;
+    if (hints[v] >= 0 ? try_land(v, hints[v], false) : try_land(v, -1, true)) continue;
+    hints[v] = -1;
+  }
+  // Vertices still off: walk from a landed neighbour, spreading over the sheet (bounded passes).
+  for (int pass = 0; pass < 8; ++pass) {
+    bool any = false;
+    for (std::size_t v = 0; v < x.size(); ++v) {
+      if (fixed[v] || landed[v]) continue;
+      for (std::uint32_t u : rings[v])
+        if (landed[u] && hints[u] >= 0 && try_land(v, hints[u], false)) {
+          any = true;
+          break;
+        }
+    }
+    if (!any) break;
+  }
+  std::size_t off = 0;
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    if (fixed[v]) continue;
+    if (moved) (*moved)[v] = norm(p[v] - x[v]);
+    off += !landed[v];
+  }
+  x = std::move(p);
+  return off;
+}
+
+// One round of tangential smoothing of the free vertices (Jacobi: every vertex from the old positions).
+void relax_tangentially(std::vector<Vec3>& x, const std::vector<char>& fixed, const Rings& rings,
+                        const std::vector<Triangle>& tris, double step) {
+  const std::vector<Vec3> normals = vertex_normals(x, tris);
+  std::vector<Vec3> out = x;
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    if (fixed[v] || rings[v].empty()) continue;
+    Vec3 c{};
+    for (std::uint32_t u : rings[v]) c += x[u];
+    Vec3 d = c / static_cast<double>(rings[v].size()) - x[v];
+    d -= dot(d, normals[v]) * normals[v];
+    out[v] = x[v] + step * d;
+  }
+  x = std::move(out);
+}
+
+// Frame t: the thin-plate guess, then relaxation rounds each ending on the frame's own surface.
+std::vector<Vec3> carry_one(const std::vector<Vec3>& guess, const FrameTargets& ft, const Rings& rings,
+                            const std::vector<Triangle>& tris, const TriangleMesh& own, const CarryOptions& opt,
+                            CarryFrameReport& fr) {
+  std::vector<Vec3> x = guess;
+  const SurfaceProjector surface(own);
+  std::vector<std::int32_t> hints(x.size(), -1);
+  std::vector<double> moved(x.size(), 0.0);
+  project_on_sheet(x, ft.fixed, rings, tris, surface, hints, opt.sheet_cos, &moved);
+  std::size_t free = 0;
+  for (std::size_t v = 0; v < x.size(); ++v)
+    if (!ft.fixed[v]) {
+      ++free;
+      fr.projection_mean += moved[v];
+      fr.projection_max = std::max(fr.projection_max, moved[v]);
+    }
+  if (free) fr.projection_mean /= static_cast<double>(free);
+  for (int r = 0; r < opt.relax_rounds; ++r) {
+    relax_tangentially(x, ft.fixed, rings, tris, opt.relax_step);
+    fr.off_sheet = project_on_sheet(x, ft.fixed, rings, tris, surface, hints, opt.sheet_cos);
+  }
+  return x;
+}
+
+}  // namespace
+
+MeshSequence carry_frames(const Sequence& seq, const TriangleMesh& frame0,
+                          const std::function<TriangleMesh(std::size_t)>& surface, const CarryOptions& options,
+                          CarryReport* report) {
+  const std::size_t n = seq.frames.size();
+  CarryReport local;
+  CarryReport& rep = report ? *report : local;
+  rep.frames.assign(n, {});
+  const std::vector<Vec3>& x0 = frame0.positions;
+  const Rings rings = vertex_rings(x0.size(), frame0.triangles);
+  const SparseMatrix q = bilaplacian(rings);
+
+  // 1. Which chains each frame matches (cheap, in order): frames with the same set share a factorisation.
+  const std::vector<Chain> chains = find_chains(seq, frame0);
+  std::map<int, std::vector<const Chain*>> by_slice;
+  for (const Chain& c : chains) by_slice[c.slice].push_back(&c);
+  std::vector<FrameTargets> targets(n);
+  tbb::parallel_for(std::size_t{1}, std::max<std::size_t>(1, n), [&](std::size_t t) {
+    targets[t] = match_frame(seq, by_slice, x0, t, options);
+  });
+  std::map<std::vector<char>, std::size_t> system_of;
+  std::vector<std::size_t> system(n, 0);
+  for (std::size_t t = 1; t < n; ++t)
+    system[t] = system_of.emplace(targets[t].fixed, system_of.size()).first->second;
+  std::vector<ThinPlate> systems(system_of.size());
+  std::vector<const std::vector<char>*> masks(system_of.size());
+  for (const auto& [mask, k] : system_of) masks[k] = &mask;
+  tbb::parallel_for(std::size_t{0}, systems.size(), [&](std::size_t k) { factor(q, *masks[k], systems[k]); });
+  rep.factorisations = systems.size();
+
+  // 2. Every frame on its own: guess, own surface, relaxation and projection.
+  MeshSequence out;
+  out.triangles = frame0.triangles;
+  out.positions.assign(n, {});
+  out.times_ms.resize(n);
+  for (std::size_t t = 0; t < n; ++t) out.times_ms[t] = seq.frames[t].time_ms;
+  if (n > 0) out.positions[0] = x0;
+  tbb::parallel_for(std::size_t{1}, std::max<std::size_t>(1, n), [&](std::size_t t) {
+    const FrameTargets& ft = targets[t];
+    CarryFrameReport& fr = rep.frames[t];
+    fr.matched_contours = ft.matched;
+    fr.unmatched_chains = ft.unmatched;
+    fr.fixed_vertices = static_cast<std::size_t>(std::count(ft.fixed.begin(), ft.fixed.end(), 1));
+    const std::vector<Vec3> guess = thin_plate_guess(q, systems[system[t]], x0, ft);
+    const TriangleMesh own = surface(t);
+    out.positions[t] = carry_one(guess, ft, rings, frame0.triangles, own, options, fr);
+  });
+  return out;
+}
+
+}  // namespace c4d
