@@ -39,6 +39,7 @@ struct ReconstructArgs {
   std::string tiling = "bands";
   std::string remesher = "auto";
   std::string keep_failed;
+  double volume_tolerance = ResultCheckOptions{}.volume_tolerance;
 };
 
 nlohmann::json connections_json(const std::vector<Connection>& cs) {
@@ -75,14 +76,20 @@ nlohmann::json checks_json(const ResultCheck& check) {
 
 // The output gate: every frame checked before anything is written. A failing result is written only
 // where --keep-failed asks, marked FAILED, and the run ends with ErrorCode::InvalidResult.
-void check_before_writing(const ReconstructArgs& a, const Sequence& seq, const std::string& label, bool closed,
-                          const MeshSequence& result, nlohmann::json& report) {
+ResultCheck run_checks(const ReconstructArgs& a, const Sequence& seq, const std::string& label, bool closed,
+                       const MeshSequence& result) {
   ResultCheckOptions opt;
   opt.closed = closed;
+  opt.volume_tolerance = a.volume_tolerance;
   ResultCheck check = check_result(result, checked_contours(seq, label, a.frame), opt);
   if (a.frame >= 0)
     for (FrameCheck& c : check.frames) c.frame = a.frame;
-  report["checks"] = {{"ok", check.ok()}, {"volume_tolerance", opt.volume_tolerance}, {"frames", checks_json(check)}};
+  return check;
+}
+
+void check_before_writing(const ReconstructArgs& a, const ResultCheck& check, const MeshSequence& result,
+                          nlohmann::json& report) {
+  report["checks"] = {{"ok", check.ok()}, {"volume_tolerance", a.volume_tolerance}, {"frames", checks_json(check)}};
   if (check.ok()) return;
   std::string hint = fmt::format("nothing was written to {}", a.output);
   if (!a.keep_failed.empty()) {
@@ -149,6 +156,8 @@ int run_reconstruct(const ReconstructArgs& a) {
         {"biharmonic", a.biharmonic}}},
   };
   MeshSequence result;
+  ResultCheck check;
+  const bool closed = opt.surface.caps != CapStyle::Open;
   if (a.frame >= 0) {
     if (a.frame >= static_cast<int>(seq.frames.size()))
       throw InvalidInput(ErrorCode::Usage, Location{a.input},
@@ -159,9 +168,29 @@ int run_reconstruct(const ReconstructArgs& a) {
     result.positions = {mesh.positions};
     result.times_ms = {seq.frames[static_cast<std::size_t>(a.frame)].time_ms};
     report["frames"] = {{{"frame", a.frame}, {"surface", surface_json(sr)}}};
+    check = run_checks(a, seq, opt.surface.label, closed, result);
   } else {
     Reconstruct4DReport rr;
     result = reconstruct_4d(seq, opt, &rr);
+    check = run_checks(a, seq, opt.surface.label, closed, result);
+    if (!check.ok() && a.method == "rbf-project") {
+      // The frame-after-frame morph can fold a frame onto a neighbouring sheet (a myocardium's two walls):
+      // every frame is then carried from frame 0 on its own, and kept if that passes the checks.
+      std::cout << fmt::format("  the frame-after-frame morph failed its checks ({}); carrying every frame from frame 0 "
+                               "instead\n", check.summary()) << std::flush;
+      Reconstruct4DOptions carry = opt;
+      carry.all_frames = AllFramesMethod::Carry;
+      Reconstruct4DReport rc;
+      MeshSequence other = reconstruct_4d(seq, carry, &rc);
+      ResultCheck other_check = run_checks(a, seq, opt.surface.label, closed, other);
+      report["all_frames_fallback"] = {{"morph_fault", check.summary()}, {"carry_ok", other_check.ok()}};
+      if (other_check.ok()) {
+        result = std::move(other);
+        rr = std::move(rc);
+        check = std::move(other_check);
+        report["options"]["method"] = "carry";
+      }
+    }
     nlohmann::json frames = nlohmann::json::array();
     for (std::size_t f = 0; f < result.positions.size(); ++f) {
       const MorphFrameReport& mf = rr.morph.frames[f];
@@ -203,7 +232,7 @@ int run_reconstruct(const ReconstructArgs& a) {
                                s.last_frame, s.contours_below, s.contours_above);
   }
   bar.finish();
-  check_before_writing(a, seq, opt.surface.label, opt.surface.caps != CapStyle::Open, result, report);
+  check_before_writing(a, check, result, report);
 
   std::vector<double> volumes;
   for (std::size_t f = 0; f < result.positions.size(); ++f) volumes.push_back(signed_volume(result.frame(f)));
@@ -308,6 +337,10 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
                   "every frame is checked before writing (closed, manifold, outward, no crossing triangles, volume near "
                   "Simpson's discs); a failing result exits with code 26 and writes nothing, or with this option writes "
                   "it to this folder marked FAILED, for debugging");
+  app->add_option("--volume-tolerance", args->volume_tolerance,
+                  "output check: largest accepted |mesh volume / Simpson's discs volume - 1| per frame")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
   commands.push_back({app, [args] { return run_reconstruct(*args); }});
 }
 

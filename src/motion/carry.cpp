@@ -16,6 +16,7 @@
 #include "contour4d/core/errors.h"
 #include "contour4d/core/sparse_solve.h"
 #include "contour4d/motion/chains.h"
+#include "contour4d/metrics/topology.h"
 #include "contour4d/motion/contour_matching.h"
 #include "contour4d/surface/surface_projector.h"
 
@@ -75,6 +76,16 @@ double loop_length(const std::vector<Vec2>& p) {
   return len;
 }
 
+// Per contour of one slice, how many of the others contain it: an even depth bounds material, an
+// odd one a hole (a myocardium's cavity). Only contours of the same parity can be partners.
+std::vector<int> nesting_depths(const std::vector<std::vector<Vec2>>& polys) {
+  std::vector<int> depth(polys.size(), 0);
+  for (std::size_t i = 0; i < polys.size(); ++i)
+    for (std::size_t j = 0; j < polys.size(); ++j)
+      if (i != j && !polys[i].empty() && point_in_polygon(polys[i].front(), polys[j])) ++depth[i];
+  return depth;
+}
+
 // One slice: frame 0's chains there against frame t's contours there, one-to-one by similarity; each
 // matched chain mapped onto its contour by arc length (every k-th vertex where the contour shrank).
 void match_slice(const std::vector<const Chain*>& chains, const Slice* slice, const std::vector<Vec3>& x0,
@@ -91,9 +102,11 @@ void match_slice(const std::vector<const Chain*>& chains, const Slice* slice, co
     a.push_back(flatten(pl, pts));
   }
   for (const Contour& c : slice->contours) b.push_back(flatten(pl, c.points));
+  const std::vector<int> da = nesting_depths(a), db = nesting_depths(b);
   std::vector<std::vector<double>> sim(a.size(), std::vector<double>(b.size()));
   for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j) sim[i][j] = contour_similarity(a[i], b[j]);
+    for (std::size_t j = 0; j < b.size(); ++j)
+      sim[i][j] = (da[i] % 2 == db[j] % 2) ? contour_similarity(a[i], b[j]) : 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     const int partner = one_to_one_partner(sim, i, opt.threshold);
     if (partner < 0) {
@@ -198,10 +211,13 @@ std::vector<Vec3> vertex_normals(const std::vector<Vec3>& x, const std::vector<T
 // tree for its closest point; where that faces away (another sheet), it walks instead from a neighbour
 // that landed, which stays on the neighbour's sheet. Vertices that find no landing keep their place.
 // Returns the number of vertices left off the surface.
+// `landing` gets, per vertex, the normal of the surface where it landed (its vertex normal where it did not).
 std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixed, const Rings& rings,
                              const std::vector<Triangle>& tris, const SurfaceProjector& surface,
-                             std::vector<std::int32_t>& hints, double sheet_cos, std::vector<double>* moved = nullptr) {
+                             std::vector<std::int32_t>& hints, double sheet_cos, std::vector<Vec3>& landing,
+                             std::vector<double>* moved = nullptr) {
   const std::vector<Vec3> normals = vertex_normals(x, tris);
+  landing = normals;
   std::vector<char> landed(x.size(), 0);
   std::vector<Vec3> p = x;
   auto try_land = [&](std::size_t v, std::int32_t hint, bool tree) {
@@ -209,6 +225,7 @@ std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixe
     const Vec3 q = tree ? surface.closest(x[v], &nq, &hint) : surface.walk(x[v], &nq, &hint);
     if (!(dot(nq, normals[v]) >= sheet_cos)) return false;
     p[v] = q;
+    landing[v] = nq;
     hints[v] = hint;
     landed[v] = 1;
     return true;
@@ -241,10 +258,10 @@ std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixe
   return off;
 }
 
-// One round of tangential smoothing of the free vertices (Jacobi: every vertex from the old positions).
+// One round of tangential smoothing of the free vertices (Jacobi: every vertex from the old positions), in
+// the tangent plane of the surface where each vertex landed (a folded mesh's own normals are unreliable).
 void relax_tangentially(std::vector<Vec3>& x, const std::vector<char>& fixed, const Rings& rings,
-                        const std::vector<Triangle>& tris, double step) {
-  const std::vector<Vec3> normals = vertex_normals(x, tris);
+                        const std::vector<Vec3>& normals, double step) {
   std::vector<Vec3> out = x;
   for (std::size_t v = 0; v < x.size(); ++v) {
     if (fixed[v] || rings[v].empty()) continue;
@@ -265,7 +282,8 @@ std::vector<Vec3> carry_one(const std::vector<Vec3>& guess, const FrameTargets& 
   const SurfaceProjector surface(own);
   std::vector<std::int32_t> hints(x.size(), -1);
   std::vector<double> moved(x.size(), 0.0);
-  project_on_sheet(x, ft.fixed, rings, tris, surface, hints, opt.sheet_cos, &moved);
+  std::vector<Vec3> normals;
+  project_on_sheet(x, ft.fixed, rings, tris, surface, hints, opt.sheet_cos, normals, &moved);
   std::size_t free = 0;
   for (std::size_t v = 0; v < x.size(); ++v)
     if (!ft.fixed[v]) {
@@ -274,9 +292,18 @@ std::vector<Vec3> carry_one(const std::vector<Vec3>& guess, const FrameTargets& 
       fr.projection_max = std::max(fr.projection_max, moved[v]);
     }
   if (free) fr.projection_mean /= static_cast<double>(free);
-  for (int r = 0; r < opt.relax_rounds; ++r) {
-    relax_tangentially(x, ft.fixed, rings, tris, opt.relax_step);
-    fr.off_sheet = project_on_sheet(x, ft.fixed, rings, tris, surface, hints, opt.sheet_cos);
+  auto rounds = [&](int count) {
+    for (int r = 0; r < count; ++r) {
+      relax_tangentially(x, ft.fixed, rings, normals, opt.relax_step);
+      fr.off_sheet = project_on_sheet(x, ft.fixed, rings, tris, surface, hints, opt.sheet_cos, normals);
+    }
+  };
+  rounds(opt.relax_rounds);
+  // Folds left where the surface moved far (a cavity closing above a slice): more rounds until none.
+  for (int k = 0; k < opt.untangle_checks; ++k) {
+    fr.crossings = count_self_intersections({x, tris});
+    if (fr.crossings == 0) break;
+    rounds(opt.relax_rounds);
   }
   return x;
 }

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -64,6 +65,29 @@ TEST(Cli, RemesherOptionReachesTheReport) {
   while (fgets(buf.data(), buf.size(), f.get())) report += buf.data();
   EXPECT_NE(report.find("\"remesher\": \"fast\""), std::string::npos);
   EXPECT_EQ(run("reconstruct " + dir + "/ph/contours.json --remesher bogus -o " + dir + "/never").code, 2);
+}
+
+// A result that fails the output checks: its own exit code, a message naming the frame and the fault,
+// no output folder; --keep-failed writes it elsewhere, marked FAILED. (A volume bound no surface can meet
+// stands in for a broken frame.)
+TEST(Cli, FailedCheckWritesNothingAndHasItsOwnExitCode) {
+  const std::string dir = ::testing::TempDir() + "c4d-cli-gate";
+  ASSERT_EQ(run("phantom left-heart -o " + dir + "/ph").code, 0);
+  const std::string in = dir + "/ph/contours.json";
+  const Result r = run("reconstruct " + in + " --frame 1 --volume-tolerance 0 -o " + dir + "/out");
+  EXPECT_EQ(r.code, 26) << r.out;
+  EXPECT_NE(r.out.find("frame 1: volume"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("nothing was written"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  const Result kept = run("reconstruct " + in + " --frame 1 --volume-tolerance 0 -o " + dir + "/out --keep-failed " + dir + "/failed");
+  EXPECT_EQ(kept.code, 26) << kept.out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/failed/FAILED.txt"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/failed/report.json"));
+  // The same input within the default bound passes, and the report holds every frame's check.
+  const Result ok = run("reconstruct " + in + " --frame 1 -o " + dir + "/out");
+  EXPECT_EQ(ok.code, 0) << ok.out;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/report.json"));
 }
 
 }  // namespace

@@ -20,10 +20,11 @@ struct ResultCheckOptions {
                        //!< and the volume is not compared)
   bool self_intersections = true;  //!< run the triangle-triangle intersection test (exact predicates)
   //! Largest |mesh volume / Simpson's volume − 1| accepted. Simpson's discs (area × slice thickness,
-  //! half a gap beyond each end slice) differ from a smooth surface through the same contours by the
-  //! caps and the curvature between slices: on the bundled real data and the phantoms the ratio stays
-  //! within a few per cent (docs/algorithms/result_check.md), a collapsed or inside-out frame is far out.
-  double volume_tolerance = 0.15;
+  //! half a gap beyond each end slice) and a smooth surface through the same contours differ by the caps
+  //! and the curvature between slices: −1.8 to +0.2 % on the bundled real data and the left-heart,
+  //! ellipsoid and bifurcation phantoms, −4.6 to +7.7 % on the torus (holes closing between slices),
+  //! −4.0 to −2.2 % on myocardium shells; a collapsed or inside-out frame is far out.
+  double volume_tolerance = 0.10;
 };
 
 //! What check_result found in one frame.
