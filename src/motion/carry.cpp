@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 
 #include <tbb/parallel_for.h>
 
@@ -18,6 +19,7 @@
 #include "contour4d/motion/chains.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/motion/contour_matching.h"
+#include "contour4d/surface/angle_repair.h"
 #include "contour4d/surface/surface_projector.h"
 
 namespace c4d {
@@ -56,24 +58,41 @@ SparseMatrix bilaplacian(const Rings& rings) {
   return SparseMatrix(L.transpose() * L);
 }
 
-// Where frame t puts frame 0's matched chains: a target per fixed vertex.
+// A matched chain's size and place in frame 0 and in frame t (centroids in mm, radii of equal area).
+struct MatchedLoop {
+  double height = 0;  // along the stack normal
+  Vec3 c0, ct;
+  double r0 = 0, rt = 0;
+};
+
+// Where frame t puts frame 0's matched chains: a target per chain vertex (fixed in the thin-plate guess),
+// and the contour it slides along afterwards.
 struct FrameTargets {
-  std::vector<char> fixed;  // per vertex
+  std::vector<char> fixed;   // per vertex
   std::vector<Vec3> target;  // per vertex (meaningful where fixed)
+  std::vector<std::int32_t> line;        // per vertex: index into `lines`, −1 when not on a matched chain
+  std::vector<std::vector<Vec3>> lines;  // the matched contours of frame t
+  std::vector<MatchedLoop> loops;
   int matched = 0, unmatched = 0;
 };
+
+Vec2 centroid(const std::vector<Vec2>& p) {
+  Vec2 c{0, 0};
+  for (const Vec2& q : p) c = c + q;
+  return (1.0 / static_cast<double>(std::max<std::size_t>(1, p.size()))) * c;
+}
+
+double equal_area_radius(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) a += cross(p[k], p[(k + 1) % p.size()]);
+  return std::sqrt(std::abs(0.5 * a) / std::numbers::pi);
+}
 
 std::vector<Vec2> flatten(const Plane& pl, const std::vector<Vec3>& pts) {
   std::vector<Vec2> out;
   out.reserve(pts.size());
   for (const Vec3& p : pts) out.push_back(to_plane(pl, p));
   return out;
-}
-
-double loop_length(const std::vector<Vec2>& p) {
-  double len = 0;
-  for (std::size_t k = 0; k < p.size(); ++k) len += norm(p[(k + 1) % p.size()] - p[k]);
-  return len;
 }
 
 // Per contour of one slice, how many of the others contain it: an even depth bounds material, an
@@ -114,13 +133,16 @@ void match_slice(const std::vector<const Chain*>& chains, const Slice* slice, co
       continue;
     }
     const ContourMatch m = match_contour(a[i], b[static_cast<std::size_t>(partner)]);
-    const double shrink = loop_length(a[i]) / std::max(1e-9, loop_length(m.targets));
-    const std::size_t stride = shrink > opt.shrink_ratio ? static_cast<std::size_t>(std::ceil(shrink - 0.25)) : 1;
+    const std::vector<Vec2>& partner_poly = b[static_cast<std::size_t>(partner)];
+    out.loops.push_back({dot(pl.origin, pl.normal), from_plane(pl, centroid(a[i])), from_plane(pl, centroid(partner_poly)),
+                         equal_area_radius(a[i]), equal_area_radius(partner_poly)});
+    const auto line = static_cast<std::int32_t>(out.lines.size());
+    out.lines.push_back(slice->contours[static_cast<std::size_t>(partner)].points);
     const std::vector<std::uint32_t>& loop = chains[i]->loop;
     for (std::size_t k = 0; k < loop.size(); ++k) {
-      if (k % stride != 0 || (stride > 1 && k + stride / 2 >= loop.size())) continue;
       out.fixed[loop[k]] = 1;
       out.target[loop[k]] = from_plane(pl, m.targets[k]);
+      out.line[loop[k]] = line;
     }
     ++out.matched;
   }
@@ -131,6 +153,7 @@ FrameTargets match_frame(const Sequence& seq, const std::map<int, std::vector<co
   FrameTargets out;
   out.fixed.assign(x0.size(), 0);
   out.target.assign(x0.size(), Vec3{});
+  out.line.assign(x0.size(), -1);
   const Frame& frame = seq.frames[t];
   for (const auto& [id, chains] : by_slice) {
     const auto it = std::find_if(frame.slices.begin(), frame.slices.end(), [id = id](const Slice& s) { return s.id == id; });
@@ -212,7 +235,7 @@ std::vector<Vec3> vertex_normals(const std::vector<Vec3>& x, const std::vector<T
 // that landed, which stays on the neighbour's sheet. Vertices that find no landing keep their place.
 // Returns the number of vertices left off the surface.
 // `landing` gets, per vertex, the normal of the surface where it landed (its vertex normal where it did not).
-std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixed, const Rings& rings,
+std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& skip, const Rings& rings,
                              const std::vector<Triangle>& tris, const SurfaceProjector& surface,
                              std::vector<std::int32_t>& hints, double sheet_cos, std::vector<Vec3>& landing,
                              std::vector<double>* moved = nullptr) {
@@ -231,7 +254,7 @@ std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixe
     return true;
   };
   for (std::size_t v = 0; v < x.size(); ++v) {
-    if (fixed[v]) continue;
+    if (skip[v]) continue;
     if (hints[v] >= 0 ? try_land(v, hints[v], false) : try_land(v, -1, true)) continue;
     hints[v] = -1;
   }
@@ -239,7 +262,7 @@ std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixe
   for (int pass = 0; pass < 8; ++pass) {
     bool any = false;
     for (std::size_t v = 0; v < x.size(); ++v) {
-      if (fixed[v] || landed[v]) continue;
+      if (skip[v] || landed[v]) continue;
       for (std::uint32_t u : rings[v])
         if (landed[u] && hints[u] >= 0 && try_land(v, hints[u], false)) {
           any = true;
@@ -250,7 +273,7 @@ std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixe
   }
   std::size_t off = 0;
   for (std::size_t v = 0; v < x.size(); ++v) {
-    if (fixed[v]) continue;
+    if (skip[v]) continue;
     if (moved) (*moved)[v] = norm(p[v] - x[v]);
     off += !landed[v];
   }
@@ -260,11 +283,10 @@ std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& fixe
 
 // One round of tangential smoothing of the free vertices (Jacobi: every vertex from the old positions), in
 // the tangent plane of the surface where each vertex landed (a folded mesh's own normals are unreliable).
-void relax_tangentially(std::vector<Vec3>& x, const std::vector<char>& fixed, const Rings& rings,
-                        const std::vector<Vec3>& normals, double step) {
+void relax_tangentially(std::vector<Vec3>& x, const Rings& rings, const std::vector<Vec3>& normals, double step) {
   std::vector<Vec3> out = x;
   for (std::size_t v = 0; v < x.size(); ++v) {
-    if (fixed[v] || rings[v].empty()) continue;
+    if (rings[v].empty()) continue;
     Vec3 c{};
     for (std::uint32_t u : rings[v]) c += x[u];
     Vec3 d = c / static_cast<double>(rings[v].size()) - x[v];
@@ -274,37 +296,115 @@ void relax_tangentially(std::vector<Vec3>& x, const std::vector<char>& fixed, co
   x = std::move(out);
 }
 
-// Frame t: the thin-plate guess, then relaxation rounds each ending on the frame's own surface.
+// Where frame t's surface ends short of (or beyond) frame 0's past the last slice whose chains it matched
+// (an apex or base retreating through a slice plane), the thin-plate guess only extrapolates. There, the
+// end of frame 0's mesh is scaled onto frame t's: about the nearest matched chain of that last slice, in
+// the plane by the ratio of the chain's and its contour's radii, along the normal by the ratio of the
+// ends' distances from that slice.
+// Only an end that retreated is scaled: frame 0 had contours past that slice and frame t has none (a slice
+// whose contours matched nothing, e.g. split, is left to the projection).
+void rescale_ends(std::vector<Vec3>& guess, const std::vector<Vec3>& x0, const FrameTargets& ft, const TriangleMesh& own,
+                  const Frame& first, const Frame& frame, Vec3 normal) {
+  if (ft.loops.empty() || own.positions.empty()) return;
+  auto outermost = [](const Frame& f, double& lo, double& hi) {  // the frame's outermost slices with contours
+    lo = 1e300;
+    hi = -1e300;
+    for (const Slice& sl : f.slices)
+      if (!sl.contours.empty()) {
+        lo = std::min(lo, sl.offset);
+        hi = std::max(hi, sl.offset);
+      }
+  };
+  double s_lo, s_hi, f0_lo, f0_hi;
+  outermost(frame, s_lo, s_hi);
+  outermost(first, f0_lo, f0_hi);
+  double m_lo = 1e300, m_hi = -1e300, e0_lo = 1e300, e0_hi = -1e300, et_lo = 1e300, et_hi = -1e300;
+  for (const MatchedLoop& l : ft.loops) {
+    m_lo = std::min(m_lo, l.height);
+    m_hi = std::max(m_hi, l.height);
+  }
+  for (const Vec3& p : x0) {
+    e0_lo = std::min(e0_lo, dot(p, normal));
+    e0_hi = std::max(e0_hi, dot(p, normal));
+  }
+  for (const Vec3& p : own.positions) {
+    et_lo = std::min(et_lo, dot(p, normal));
+    et_hi = std::max(et_hi, dot(p, normal));
+  }
+  const double tol = 1e-6 * std::max(1.0, std::abs(m_hi) + std::abs(m_lo));
+  auto end_of = [&](double m, double e0, double et, double h, Vec3 p) {
+    const MatchedLoop* best = nullptr;
+    double bd = 1e300;
+    for (const MatchedLoop& l : ft.loops) {
+      if (std::abs(l.height - m) > tol) continue;
+      const Vec3 d = p - l.c0;
+      const double in_plane = norm(d - dot(d, normal) * normal);
+      if (in_plane < bd) {
+        bd = in_plane;
+        best = &l;
+      }
+    }
+    const Vec3 d = p - best->c0;
+    const Vec3 q = d - dot(d, normal) * normal;
+    const double sr = best->r0 > 0 ? best->rt / best->r0 : 1.0;
+    const double sh = std::abs(e0 - m) > 0 ? (et - m) / (e0 - m) : 1.0;
+    return best->ct + sr * q + std::max(0.0, sh) * (h - m) * normal;  // ct lies on the slice's plane
+  };
+  for (std::size_t v = 0; v < x0.size(); ++v) {
+    if (ft.fixed[v]) continue;
+    const double h = dot(x0[v], normal);
+    if (h > m_hi && f0_hi > m_hi + 1e-3 && s_hi <= m_hi + 1e-3)
+      guess[v] = end_of(m_hi, e0_hi, et_hi, h, x0[v]);
+    else if (h < m_lo && f0_lo < m_lo - 1e-3 && s_lo >= m_lo - 1e-3)
+      guess[v] = end_of(m_lo, e0_lo, et_lo, h, x0[v]);
+  }
+}
+
+// Chain vertices onto the closest point of their contour (each from its last segment).
+void slide_on_lines(std::vector<Vec3>& x, const FrameTargets& ft, std::vector<std::int32_t>& line_hints) {
+  for (std::size_t v = 0; v < x.size(); ++v)
+    if (ft.line[v] >= 0) x[v] = closest_on_loop(ft.lines[static_cast<std::size_t>(ft.line[v])], x[v], line_hints[v]);
+}
+
+// Frame t: the thin-plate guess, then relaxation rounds, each ending with the chain vertices on their
+// contours and the others on the frame's own surface; last, local untangling and the small-angle repair.
 std::vector<Vec3> carry_one(const std::vector<Vec3>& guess, const FrameTargets& ft, const Rings& rings,
                             const std::vector<Triangle>& tris, const TriangleMesh& own, const CarryOptions& opt,
                             CarryFrameReport& fr) {
   std::vector<Vec3> x = guess;
   const SurfaceProjector surface(own);
-  std::vector<std::int32_t> hints(x.size(), -1);
+  std::vector<std::int32_t> hints(x.size(), -1), line_hints(x.size(), -1);
   std::vector<double> moved(x.size(), 0.0);
   std::vector<Vec3> normals;
-  project_on_sheet(x, ft.fixed, rings, tris, surface, hints, opt.sheet_cos, normals, &moved);
+  std::vector<char> on_line(x.size(), 0);
+  for (std::size_t v = 0; v < x.size(); ++v) on_line[v] = ft.line[v] >= 0;
+  project_on_sheet(x, on_line, rings, tris, surface, hints, opt.sheet_cos, normals, &moved);
+  slide_on_lines(x, ft, line_hints);
   std::size_t free = 0;
   for (std::size_t v = 0; v < x.size(); ++v)
-    if (!ft.fixed[v]) {
+    if (!on_line[v]) {
       ++free;
       fr.projection_mean += moved[v];
       fr.projection_max = std::max(fr.projection_max, moved[v]);
     }
   if (free) fr.projection_mean /= static_cast<double>(free);
-  auto rounds = [&](int count) {
-    for (int r = 0; r < count; ++r) {
-      relax_tangentially(x, ft.fixed, rings, normals, opt.relax_step);
-      fr.off_sheet = project_on_sheet(x, ft.fixed, rings, tris, surface, hints, opt.sheet_cos, normals);
-    }
-  };
-  rounds(opt.relax_rounds);
-  // Folds left where the surface moved far (a cavity closing above a slice): more rounds until none.
-  for (int k = 0; k < opt.untangle_checks; ++k) {
-    fr.crossings = count_self_intersections({x, tris});
-    if (fr.crossings == 0) break;
-    rounds(opt.relax_rounds);
+  for (int r = 0; r < opt.relax_rounds; ++r) {
+    relax_tangentially(x, rings, normals, opt.relax_step);
+    slide_on_lines(x, ft, line_hints);
+    fr.off_sheet = project_on_sheet(x, on_line, rings, tris, surface, hints, opt.sheet_cos, normals);
   }
+  // Folds and small angles left where vertices travelled far (a cavity closing above a slice, a contour that
+  // shrank): the local untangling and the small-angle repair of the one-frame surface, moves within the
+  // surface (chain vertices along their contours).
+  const SurfaceSnap snap = [&](std::uint32_t v, Vec3 p) {
+    return on_line[v] ? closest_on_loop(ft.lines[static_cast<std::size_t>(ft.line[v])], p, line_hints[v])
+                      : surface.walk(p, nullptr, &hints[v]);
+  };
+  const std::vector<char> none(x.size(), 0);
+  fr.crossings = untangle(x, tris, none, snap, opt.untangle_rounds);
+  AngleRepairOptions repair;
+  repair.target_deg = opt.angle_target_deg;
+  fr.angle_repairs = repair_small_angles(x, tris, none, snap, repair);
   return x;
 }
 
@@ -352,8 +452,9 @@ MeshSequence carry_frames(const Sequence& seq, const TriangleMesh& frame0,
     fr.matched_contours = ft.matched;
     fr.unmatched_chains = ft.unmatched;
     fr.fixed_vertices = static_cast<std::size_t>(std::count(ft.fixed.begin(), ft.fixed.end(), 1));
-    const std::vector<Vec3> guess = thin_plate_guess(q, systems[system[t]], x0, ft);
     const TriangleMesh own = surface(t);
+    std::vector<Vec3> guess = thin_plate_guess(q, systems[system[t]], x0, ft);
+    rescale_ends(guess, x0, ft, own, seq.frames[0], seq.frames[t], seq.normal);
     out.positions[t] = carry_one(guess, ft, rings, frame0.triangles, own, options, fr);
   });
   return out;

@@ -144,44 +144,6 @@ bool on_stride(std::size_t k, std::size_t stride, std::size_t count) {
   return stride > 0 && k % stride == 0 && (stride == 1 || k + stride / 2 < count);
 }
 
-// The point of segment [a, b] closest to q.
-Vec3 closest_on_segment(Vec3 a, Vec3 b, Vec3 q) {
-  const Vec3 e = b - a;
-  const double ee = dot(e, e);
-  return a + (ee > 0 ? std::clamp(dot(q - a, e) / ee, 0.0, 1.0) : 0.0) * e;
-}
-
-// Closest point to q on the closed polyline `loop`. `hint` is the segment found last time (-1: none,
-// then every segment is tried); the search walks from it while a neighbouring segment is closer, so a
-// point that moves a little along the contour costs a few segment tests.
-Vec3 closest_on_loop(const std::vector<Vec3>& loop, Vec3 q, std::int32_t& hint) {
-  const std::size_t n = loop.size();
-  double best = std::numeric_limits<double>::infinity();
-  Vec3 bp = q;
-  std::size_t bk = 0;
-  // Neighbouring segments by a compare, not a division (this runs for every sliding vertex every sweep).
-  auto next = [n](std::size_t k) { return k + 1 == n ? 0 : k + 1; };
-  auto prev = [n](std::size_t k) { return k == 0 ? n - 1 : k - 1; };
-  auto consider = [&](std::size_t k) {  // true when segment k is closer than the best so far
-    const Vec3 p = closest_on_segment(loop[k], loop[next(k)], q);
-    const double d2 = dot(q - p, q - p);
-    if (!(d2 < best)) return false;
-    best = d2;
-    bp = p;
-    bk = k;
-    return true;
-  };
-  if (hint < 0 || static_cast<std::size_t>(hint) >= n) {
-    for (std::size_t k = 0; k < n; ++k) consider(k);
-  } else {
-    consider(static_cast<std::size_t>(hint));
-    for (std::size_t steps = 0; steps < n; ++steps)
-      if (!consider(next(bk)) && !consider(prev(bk))) break;
-  }
-  hint = static_cast<std::int32_t>(bk);
-  return bp;
-}
-
 // Matches the chains (at their current positions) to the contours of `frame`, one-to-one per slice;
 // fills `target` for every vertex of a matched chain and `lines` with the matched contours. Reports
 // slices whose contour count changed; `unmatched` gets them, those changing into the next frame, and

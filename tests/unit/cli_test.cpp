@@ -72,6 +72,7 @@ TEST(Cli, RemesherOptionReachesTheReport) {
 // stands in for a broken frame.)
 TEST(Cli, FailedCheckWritesNothingAndHasItsOwnExitCode) {
   const std::string dir = ::testing::TempDir() + "c4d-cli-gate";
+  std::filesystem::remove_all(dir);  // a run before this one left its outputs
   ASSERT_EQ(run("phantom left-heart -o " + dir + "/ph").code, 0);
   const std::string in = dir + "/ph/contours.json";
   const Result r = run("reconstruct " + in + " --frame 1 --volume-tolerance 0 -o " + dir + "/out");

@@ -29,10 +29,9 @@ struct CarryOptions {
   double relax_step = 0.5;     //!< fraction of the way to the neighbours' centroid, in the tangent plane, per round
   double sheet_cos = 0.2;      //!< a vertex lands on the surface only where the landing triangle's normal and the
                                //!< vertex normal make an angle with at least this cosine (about 78°)
-  int untangle_checks = 8;     //!< a frame with crossing triangles after relax_rounds gets relax_rounds more, up to this
-                               //!< many times
-  double shrink_ratio = 1.25;  //!< a matched contour shorter than frame 0's chain by more than this factor keeps
-                               //!< only every k-th chain vertex on it (k ≈ the ratio); the others relax freely
+  int untangle_rounds = 4;     //!< rounds of local untangling where triangles cross after the relaxation (angle_repair.h)
+  double angle_target_deg = 32.0;  //!< last, the vertices of triangles with an angle below this move within the surface
+                                   //!< to raise their ring's smallest angle (angle_repair.h)
 };
 
 //! Per-frame figures of carry_frames.
@@ -40,7 +39,8 @@ struct CarryFrameReport {
   int matched_contours = 0;          //!< frame-0 chains matched one-to-one to this frame's contours
   int unmatched_chains = 0;          //!< chains without a partner (their contour split, merged or vanished)
   std::size_t fixed_vertices = 0;    //!< chain vertices put on this frame's contours
-  std::size_t crossings = 0;         //!< crossing triangle pairs at the last check (0: none)
+  std::size_t crossings = 0;         //!< crossing triangle pairs left by the untangling (0: none, or not tested)
+  std::size_t angle_repairs = 0;     //!< vertex moves of the small-angle repair
   std::size_t off_sheet = 0;         //!< projections refused in the last round (landing on a sheet facing away)
   double projection_mean = 0.0;      //!< mean distance (mm) moved by the first projection
   double projection_max = 0.0;       //!< largest of the same

@@ -29,4 +29,12 @@ std::vector<Chain> find_chains(const Sequence& seq, const TriangleMesh& mesh);
 //! partner is i (sim[i][j]: similarity index); −1 when there is none.
 int one_to_one_partner(const std::vector<std::vector<double>>& sim, std::size_t i, double threshold);
 
+//! The point of segment [a, b] closest to q.
+Vec3 closest_on_segment(Vec3 a, Vec3 b, Vec3 q);
+
+//! Closest point to q on the closed polyline `loop`. `hint` is the segment found last time (−1: none,
+//! then every segment is tried); the search walks from it while a neighbouring segment is closer, so a
+//! point that moves a little along the contour costs a few segment tests. `hint` gets the segment found.
+Vec3 closest_on_loop(const std::vector<Vec3>& loop, Vec3 q, std::int32_t& hint);
+
 }  // namespace c4d
