@@ -51,6 +51,14 @@ nlohmann::json connections_json(const std::vector<Connection>& cs) {
   return a;
 }
 
+nlohmann::json repairs_json(const std::vector<ContourRepair>& repairs) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const ContourRepair& r : repairs)
+    a.push_back({{"frame", r.frame}, {"slice", r.slice}, {"contour", r.contour}, {"kind", r.kind}, {"detail", r.detail},
+                 {"moved_mm", r.moved_mm}});
+  return a;
+}
+
 nlohmann::json surface_json(const SurfaceReport& r) {
   return {{"contours", r.contours},   {"caps", r.caps},         {"branchings", r.branchings},
           {"vertices", r.vertices},   {"triangles", r.triangles}, {"closed", r.closed},
@@ -141,6 +149,12 @@ int run_reconstruct(const ReconstructArgs& a) {
 
   std::cout << fmt::format("contour4d reconstruct: {} ({}), {} frames\n", a.input, read.format, seq.frames.size());
   for (const std::string& n : read.notes) std::cout << "  " << n << "\n";
+  for (std::size_t k = 0; k < read.repairs.size() && k < 10; ++k) {
+    const ContourRepair& r = read.repairs[k];
+    std::cout << fmt::format("    repaired frame {}, slice {}, contour {}: {}\n", r.frame, r.slice, r.contour, r.detail);
+  }
+  if (read.repairs.size() > 10) std::cout << fmt::format("    ... and {} more\n", read.repairs.size() - 10);
+  std::cout << std::flush;
 
   nlohmann::json report = {
       {"tool", "contour4d 0.1.0"},
@@ -149,6 +163,8 @@ int run_reconstruct(const ReconstructArgs& a) {
       {"units", "mm"},
       {"space", seq.space},
       {"stack_normal", {seq.normal.x, seq.normal.y, seq.normal.z}},
+      {"frame_times", {{"source", read.timing}, {"known", read.timing != "unknown"}}},
+      {"repairs", repairs_json(read.repairs)},
       {"options",
        {{"edge_mm", a.edge}, {"cap", a.cap}, {"cap_fill", a.cap_fill}, {"method", a.method}, {"threshold", opt.surface.threshold},
         {"fast", a.fast}, {"no_rows", a.no_rows}, {"tiling", a.tiling}, {"remesher", a.remesher}, {"pin_spacing", a.pin_spacing},

@@ -8,7 +8,7 @@
 
 namespace c4d::cli {
 
-//! Adds --type, --label, --labels, --slice-axis, --space and --contours, filling `o`.
+//! Adds --type, --label, --labels, --slice-axis, --space, --frame-ms, --cycle-ms and --contours, filling `o`.
 inline void add_input_options(CLI::App* app, InputOptions& o) {
   app->add_option("--type", o.contour_types,
                   "GPFile contour types to keep (repeatable; default SAX_LV_ENDOCARDIAL), e.g. SAX_LV_EPICARDIAL");
@@ -22,6 +22,15 @@ inline void add_input_options(CLI::App* app, InputOptions& o) {
   app->add_option("--space", o.space, "output space of image/DICOM inputs: lps (DICOM patient space) or ras")
       ->capture_default_str()
       ->transform(CLI::IsMember({"lps", "ras", "LPS", "RAS"}));
+  app->add_option("--frame-ms", o.frame_ms,
+                  "time between frames in ms, for inputs without frame times (GPFile, label images); DICOM trigger "
+                  "times win where present")
+      ->check(CLI::PositiveNumber);
+  app->add_option("--cycle-ms", o.cycle_ms, "the same given as the cardiac cycle length in ms (frames spread evenly over it)")
+      ->check(CLI::PositiveNumber);
+  app->add_flag("--strict", o.strict,
+                "refuse flawed contours (open arcs, loops, spikes, too few points, two slice ids on one plane) with "
+                "their exit codes instead of repairing them (the default repairs each and lists it in the report)");
   app->add_option("--contours", o.sunnybrook_contours, "Sunnybrook folders: endo (default), epi or both")
       ->check(CLI::IsMember({"endo", "epi", "both"}));
 }

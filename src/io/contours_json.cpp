@@ -135,7 +135,8 @@ std::string quoted(const std::string& s) {
 
 }  // namespace
 
-Sequence parse_contours_json(const std::string& text, const std::string& source, const StackOptions& options) {
+Sequence parse_contours_json(const std::string& text, const std::string& source, const StackOptions& options,
+                             std::vector<ContourRepair>* repairs) {
   Location file_loc;
   file_loc.file = source;
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
@@ -261,13 +262,15 @@ Sequence parse_contours_json(const std::string& text, const std::string& source,
       raw.push_back(std::move(rc));
     }
   }
+  if (repairs) *repairs = repair_contours(raw);
   Sequence seq = build_sequence(raw, static_cast<int>(frames.size()), times, source, options);
   seq.space = meta.space;
   return seq;
 }
 
-Sequence read_contours_json(const std::filesystem::path& path, const StackOptions& options) {
-  return parse_contours_json(read_file(path), path.string(), options);
+Sequence read_contours_json(const std::filesystem::path& path, const StackOptions& options,
+                            std::vector<ContourRepair>* repairs) {
+  return parse_contours_json(read_file(path), path.string(), options, repairs);
 }
 
 std::string format_contours_json(const Sequence& seq) {

@@ -406,6 +406,7 @@ GpFileResult parse_gpfile_texts(const std::vector<std::string>& frames, const st
     }
   }
 
+  if (options.repair) result.repairs = repair_contours(raw);
   try {
     result.sequence = build_sequence(raw, static_cast<int>(frames.size()), {}, source, options.stack);
   } catch (const Error& e) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include <fmt/format.h>
+
 #include "contour4d/core/errors.h"
 #include "contour4d/io/contours_json.h"
 #include "contour4d/io/gpfile.h"
@@ -41,7 +43,9 @@ std::string lower_extension(const fs::path& p) {
 
 }  // namespace
 
-InputResult read_contours(const fs::path& input, const InputOptions& options) {
+namespace {
+
+InputResult read_any(const fs::path& input, const InputOptions& options) {
   Location where;
   where.file = input.string();
   std::error_code ec;
@@ -77,15 +81,17 @@ InputResult read_contours(const fs::path& input, const InputOptions& options) {
     GpFileOptions gp;
     gp.contour_types = options.contour_types;
     gp.stack = options.stack;
+    gp.repair = !options.strict;
     GpFileResult r = read_gpfile(dir, gp);
     result.sequence = std::move(r.sequence);
+    result.repairs = std::move(r.repairs);
     result.format = "gpfile";
     result.notes = std::move(r.notes);
   } else if (lower_extension(input) == ".json") {
     if (!options.contour_types.empty())
       throw InvalidInput(ErrorCode::Usage, where, "contour types (--type) apply to GPFile folders only",
                          "use --label to choose contours of a JSON file");
-    result.sequence = read_contours_json(input, options.stack);
+    result.sequence = read_contours_json(input, options.stack, options.strict ? nullptr : &result.repairs);
     result.format = "contour4d-json";
   } else {
     throw IoError(ErrorCode::Format, where, "unrecognised input (extension \"" + input.extension().string() + "\")",
@@ -95,6 +101,54 @@ InputResult read_contours(const fs::path& input, const InputOptions& options) {
     result.sequence = select_label(result.sequence, options.label);
     result.notes.push_back("label: only \"" + options.label + "\" kept");
   }
+  return result;
+}
+
+// The readers that find no time in their data number the frames 0, 1, 2, ... ms (GPFile, label images, a
+// Sunnybrook folder without TriggerTime): a sequence timed exactly so carries no time of its own.
+bool has_own_times(const Sequence& seq) {
+  if (seq.frames.size() < 2) return true;
+  for (std::size_t f = 0; f < seq.frames.size(); ++f)
+    if (seq.frames[f].time_ms != static_cast<double>(f)) return true;
+  return false;
+}
+
+// Frame times: the data's where it has them, else --frame-ms or --cycle-ms, else unknown (said so).
+void apply_frame_times(InputResult& r, const InputOptions& o) {
+  std::vector<Frame>& frames = r.sequence.frames;
+  const std::size_t n = frames.size();
+  const bool asked = o.frame_ms > 0 || o.cycle_ms > 0;
+  if (n < 2) {
+    r.timing = "single frame";
+    return;
+  }
+  if (has_own_times(r.sequence)) {
+    r.timing = "data";
+    if (asked) r.notes.push_back("frame times from the data; --frame-ms/--cycle-ms ignored");
+    return;
+  }
+  if (!asked) {
+    r.timing = "unknown";
+    r.notes.push_back("frame times: unknown in this input (frames numbered 0, 1, 2, ... ms); give --frame-ms or --cycle-ms");
+    return;
+  }
+  const double step = o.frame_ms > 0 ? o.frame_ms : o.cycle_ms / static_cast<double>(n);
+  for (std::size_t f = 0; f < n; ++f) frames[f].time_ms = static_cast<double>(f) * step;
+  r.timing = o.frame_ms > 0 ? "--frame-ms" : "--cycle-ms";
+  r.notes.push_back(fmt::format("frame times: {:g} ms apart ({})", step, r.timing));
+}
+
+}  // namespace
+
+InputResult read_contours(const fs::path& input, const InputOptions& options) {
+  if (options.frame_ms > 0 && options.cycle_ms > 0)
+    throw InvalidInput(ErrorCode::Usage, Location{input.string()}, "give --frame-ms or --cycle-ms, not both");
+  InputResult result = read_any(input, options);
+  if (!result.repairs.empty())
+    result.notes.push_back(fmt::format("repaired {} contour flaw(s) instead of refusing the input (--strict refuses): "
+                                       "see report.json \"repairs\"",
+                                       result.repairs.size()));
+  apply_frame_times(result, options);
   return result;
 }
 

@@ -121,5 +121,35 @@ TEST(ExtractCli, Patient1WritesAReadableDeterministicFile) {
   fs::remove_all(d);
 }
 
+// Frame times: the data's own where it has them; --frame-ms / --cycle-ms for inputs without (a label
+// image); otherwise the input says they are unknown instead of passing 1 ms steps off as real.
+TEST(Input, FrameTimesFromDataOrOptionsOrSaidUnknown) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "c4d-input-times";
+  fs::remove_all(dir);
+  ASSERT_EQ(test::run_cli("phantom ellipsoid --frames 4 -o " + (dir / "ph").string() + " --mask " +
+                          (dir / "mask.nii.gz").string()),
+            0);
+  const fs::path mask = dir / "mask.nii.gz";
+  InputResult unknown = read_contours(mask);
+  EXPECT_EQ(unknown.timing, "unknown");
+  ASSERT_EQ(unknown.sequence.frames.size(), 4u);
+  InputOptions o;
+  o.frame_ms = 40;
+  InputResult by_step = read_contours(mask, o);
+  EXPECT_EQ(by_step.timing, "--frame-ms");
+  EXPECT_DOUBLE_EQ(by_step.sequence.frames[3].time_ms, 120.0);
+  o = {};
+  o.cycle_ms = 800;
+  InputResult by_cycle = read_contours(mask, o);
+  EXPECT_EQ(by_cycle.timing, "--cycle-ms");
+  EXPECT_DOUBLE_EQ(by_cycle.sequence.frames[1].time_ms, 200.0);
+  // The phantom's contour file has its own times: they win over the option.
+  InputResult own = read_contours(dir / "ph" / "contours.json", o);
+  EXPECT_EQ(own.timing, "data");
+  EXPECT_DOUBLE_EQ(own.sequence.frames[1].time_ms, read_contours(dir / "ph" / "contours.json").sequence.frames[1].time_ms);
+  o.frame_ms = 40;
+  EXPECT_EQ(code_of(mask, o), ErrorCode::Usage);  // both options at once
+}
+
 }  // namespace
 }  // namespace c4d

@@ -1,4 +1,5 @@
-// The all-frames stage on myocardial walls (issue: frames collapsing onto the other wall): a family of
+// The output gate on shapes that used to pass as "done" while broken, and the all-frames stage on
+// myocardial walls (issue: frames collapsing onto the other wall): a family of
 // myocardium-shell label masks (tests/python/make_myocardium.py: walls 5–10 mm, cavity closing towards
 // the apex, contraction up to 35 %, tilted stacks, drawn from seeds) reconstructed frame by frame with
 // --method carry: every frame passes the output checks (closed, manifold, outward, no crossing triangles,
@@ -62,6 +63,25 @@ TEST(Myocardium, CarryIsByteIdenticalAtOneAndTwoThreads) {
     EXPECT_EQ(slurp(dir + "/t1" + name), slurp(dir + "/t2" + name)) << name;
   }
   EXPECT_EQ(slurp(dir + "/t1/report.json"), slurp(dir + "/t2/report.json"));
+}
+
+// A torus tilted 10° against the slice normal (holes appear and vanish between slices): whatever the
+// surface stage makes of it, the run either writes a valid surface or refuses with exit code 26 and
+// writes nothing; never an invalid surface reported as done.
+TEST(OutputGate, TiltedTorusIsValidOrRefused) {
+  const std::string dir = ::testing::TempDir() + "c4d-gate-torus";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string mask = dir + "/torus.nii.gz";
+  ASSERT_EQ(sh(std::string(C4D_PYTHON) + " " + C4D_TEST_SCRIPTS + "/make_torus.py " + mask + " --tilt 10"), 0);
+  const std::string cli = C4D_CLI;
+  const int rc = sh(cli + " reconstruct " + mask + " --frame 0 -o " + dir + "/out");
+  if (rc == 0) {
+    EXPECT_EQ(sh(cli + " evaluate " + dir + "/out --check"), 0);
+  } else {
+    EXPECT_EQ(rc, 26);
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "contour4d/core/contour_repair.h"
 #include "contour4d/core/stack.h"
 
 namespace c4d {
@@ -17,6 +18,7 @@ struct GpFileOptions {
   std::vector<std::string> contour_types;  //!< contour types to keep; empty = {"SAX_LV_ENDOCARDIAL"}
   double parallel_tolerance_deg = 5.0;     //!< image planes within this angle of the short-axis one are kept
   StackOptions stack;                      //!< validation tolerances for build_sequence
+  bool repair = true;                      //!< fix contour flaws (contour_repair.h) instead of refusing them
 };
 
 //! One slice of SliceInfoFile.txt: a DICOM image plane (mm, LPS).
@@ -39,6 +41,7 @@ struct GpFileResult {
   std::vector<int> slices_skipped;     //!< ids of slices with chosen contours that were dropped
   std::vector<std::string> frame_files;  //!< file name of each frame
   std::vector<std::string> notes;      //!< human-readable lines: what was used, skipped, closed
+  std::vector<ContourRepair> repairs;  //!< flaws fixed (GpFileOptions::repair)
 };
 
 //! User-facing label of a biv-me contour type: lower case, '-' for '_', "SAX_" dropped,

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "contour4d/core/contour_repair.h"
 #include "contour4d/core/stack.h"
 
 namespace c4d {
@@ -20,6 +21,11 @@ struct InputOptions {
   std::string space = "LPS";               //!< output coordinates of DICOM-derived inputs: "LPS" or "RAS"
   std::string sunnybrook_contours = "endo";  //!< Sunnybrook folders: "endo", "epi" or "both"
   StackOptions stack;                      //!< validation tolerances
+  double frame_ms = 0.0;                   //!< time between frames (ms) for inputs without times of their own
+                                           //!< (GPFile, label images); 0: not given
+  double cycle_ms = 0.0;                   //!< the same as a cycle length: frame f at f × cycle_ms / frames
+  bool strict = false;                     //!< refuse flawed contours (exit codes 15, 16, 19) instead of repairing
+                                           //!< them (contour_repair.h; contour JSON and GPFile folders)
 };
 
 //! What was read, and notes for the user (which slices and frames were used or skipped, why).
@@ -27,6 +33,9 @@ struct InputResult {
   Sequence sequence;
   std::string format;               //!< "contour4d-json", "gpfile", ...
   std::vector<std::string> notes;   //!< human-readable lines for the summary
+  std::string timing;               //!< where frame times come from: "data", "--frame-ms", "--cycle-ms",
+                                    //!< "single frame" or "unknown" (frames numbered 0, 1, 2, ... ms)
+  std::vector<ContourRepair> repairs;  //!< contour flaws fixed on reading (InputOptions::strict = false)
 };
 
 //! Reads a .json contour file, a GPFile folder (a folder with GPFile_*.txt, or its parent), a
