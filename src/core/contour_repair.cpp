@@ -18,7 +18,10 @@ namespace c4d {
 
 namespace {
 
-constexpr int kMaxSplits = 256;  // loop splits per contour: bounds the work on pathological tracing
+constexpr int kMaxSplits = 32;                // loop splits per contour: bounds the work on pathological tracing
+constexpr std::size_t kMaxLoopPoints = 2000;  // larger self-crossing contours are left to validation to refuse
+                                              // (the split is quadratic; drawn contours have a few hundred points)
+constexpr std::size_t kMaxRounds = 64;        // rounds of duplicate and spike removal
 
 // A contour's points with their coordinates in the contour's own plane.
 struct Flat {
@@ -67,24 +70,32 @@ std::size_t drop_duplicates(std::vector<Vec3>& p, double tol) {
 
 // Points where the tracing turns back by more than `deg` removed, until none is left; returns the
 // largest distance from a removed point to its neighbours' chord.
+// One pass, linear: a spike whose neighbour was just removed waits for the next pass.
 double drop_spikes(std::vector<Vec3>& p, double deg, std::size_t& removed) {
   const double cos_limit = std::cos((180.0 - deg) * std::numbers::pi / 180.0);
   double moved = 0;
-  for (bool again = true; again && p.size() > 3;) {
-    again = false;
-    for (std::size_t i = 0; i < p.size() && p.size() > 3; ++i) {
-      const Vec3 a = p[(i + p.size() - 1) % p.size()], b = p[i], c = p[(i + 1) % p.size()];
-      const Vec3 u = b - a, v = c - b;
-      const double nu = norm(u), nv = norm(v);
-      if (!(nu > 0) || !(nv > 0) || dot(u, v) / (nu * nv) > -cos_limit) continue;
-      const Vec3 e = c - a;
-      const double t = dot(e, e) > 0 ? std::clamp(dot(b - a, e) / dot(e, e), 0.0, 1.0) : 0.0;
-      moved = std::max(moved, distance(b, a + t * e));
-      p.erase(p.begin() + static_cast<std::ptrdiff_t>(i));
-      ++removed;
-      again = true;
+  std::vector<Vec3> out;
+  out.reserve(p.size());
+  bool previous_removed = false;
+  std::size_t gone = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3 a = p[(i + p.size() - 1) % p.size()], b = p[i], c = p[(i + 1) % p.size()];
+    const Vec3 u = b - a, v = c - b;
+    const double nu = norm(u), nv = norm(v);
+    const bool spike = !previous_removed && nu > 0 && nv > 0 && dot(u, v) / (nu * nv) <= -cos_limit &&
+                       p.size() - (gone + 1) >= 3;
+    previous_removed = spike;
+    if (!spike) {
+      out.push_back(b);
+      continue;
     }
+    const Vec3 e = c - a;
+    const double t = dot(e, e) > 0 ? std::clamp(dot(b - a, e) / dot(e, e), 0.0, 1.0) : 0.0;
+    moved = std::max(moved, distance(b, a + t * e));
+    ++gone;
   }
+  removed += gone;
+  p = std::move(out);
   return moved;
 }
 
@@ -170,7 +181,7 @@ bool repair_one(RawContour& rc, const RepairOptions& opt, std::vector<ContourRep
   const double tol = std::max(opt.duplicate_mm, opt.duplicate_fraction * median_spacing(p));
   std::size_t repeated = 0, spikes = 0;
   double moved = 0;
-  for (std::size_t round = 0, before = 0; round < p.size() && before != p.size() && p.size() > 3; ++round) {
+  for (std::size_t round = 0, before = 0; round < kMaxRounds && before != p.size() && p.size() > 3; ++round) {
     before = p.size();
     repeated += drop_duplicates(p, tol);
     if (p.size() > 3) moved = std::max(moved, drop_spikes(p, opt.spike_deg, spikes));
@@ -214,6 +225,7 @@ bool repair_one(RawContour& rc, const RepairOptions& opt, std::vector<ContourRep
     return false;
   }
   if (!is_self_intersecting(flat.p2)) return true;
+  if (p.size() > kMaxLoopPoints) return true;  // left to validation (SelfIntersection)
   std::vector<Flat> loops = simple_loops(flat);
   const auto best = std::max_element(loops.begin(), loops.end(), [](const Flat& a, const Flat& b) {
     return std::abs(signed_area(a.p2)) < std::abs(signed_area(b.p2));
