@@ -112,8 +112,10 @@ TEST(GpFile, ErrorsNameTheFrameFileAndLine) {
   }
   const std::string degenerate = "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
                                  "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n";
+  GpFileOptions strict;
+  strict.repair = false;
   try {
-    parse_gpfile_texts({good, degenerate}, info, "dir");
+    parse_gpfile_texts({good, degenerate}, info, "dir", strict);
     FAIL();
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::DegenerateContour);
@@ -142,9 +144,25 @@ TEST(GpFile, EveryTruncatedPrefixFailsCleanly) {
 }
 
 //! Every folder in tests/corpus/gpfile: bad_NN_* must fail with ErrorCode NN, good_* read.
+// The corpus names the strict errors (--strict); the default repairs some of them (contour_repair_test,
+// repair_cli_test), and must still read every good entry and fail every bad one with some c4d::Error or a
+// valid result.
 TEST(GpFile, Corpus) {
-  const test::CorpusCounts n = test::check_corpus("gpfile", [](const fs::path& p) { read_gpfile(p); }, /*folders=*/true);
+  GpFileOptions strict;
+  strict.repair = false;
+  const test::CorpusCounts n =
+      test::check_corpus("gpfile", [&](const fs::path& p) { read_gpfile(p, strict); }, /*folders=*/true);
   EXPECT_GE(n.bad, 10);
+}
+
+TEST(GpFile, CorpusWithRepairsNeverCrashes) {
+  for (const auto& e : fs::directory_iterator(fs::path(C4D_CORPUS_DIR) / "gpfile")) {
+    SCOPED_TRACE(e.path().string());
+    try {
+      read_gpfile(e.path());
+    } catch (const Error&) {
+    }
+  }
 }
 
 }  // namespace

@@ -94,7 +94,7 @@ TEST(ExtractCli, ExitCodesAndNothingWritten) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.input.string());
-    EXPECT_EQ(run_cli("extract '" + c.input.string() + "' -o '" + out.string() + "'"), static_cast<int>(c.code));
+    EXPECT_EQ(run_cli("extract '" + c.input.string() + "' --strict -o '" + out.string() + "'"), static_cast<int>(c.code));
     EXPECT_TRUE(fs::is_empty(d)) << "a failed run left files behind";
   }
   EXPECT_EQ(run_cli("extract '" + (kCorpus / "contours_json" / "good_two_slices_two_frames.json").string() +

@@ -4,12 +4,15 @@
 //! frame independently of the others (Miara et al. §III.D–E: one base mesh, per-frame displacements;
 //! Lim et al. 2014, "Contour Matching" for the contours that keep their partner).
 //!
-//! Per frame t: frame 0's contour chains are matched one-to-one to frame t's contours and put on them
-//! by arc length (contour_matching.h); the rest of the mesh follows by a thin-plate (biharmonic)
-//! displacement, one factorisation per set of matched chains, shared by the frames that have it; then
-//! the vertices off the matched chains are relaxed tangentially and projected onto frame t's own
-//! surface, sheet by sheet: a vertex lands only on a part of the surface facing its own way, never on
-//! the nearest point of another sheet (the inner and outer walls of a myocardium lie millimetres apart).
+//! Per frame t: frame 0's contour chains are matched one-to-one to frame t's contours (same nesting parity)
+//! and put on them by arc length (contour_matching.h); the rest of the mesh follows by a thin-plate
+//! (biharmonic) displacement, one factorisation per set of matched chains, shared by the frames that have
+//! it; where an end of the surface retreated past a slice (an apex or base whose contour vanished), that end
+//! of frame 0's mesh is scaled onto frame t's. Then rounds of tangential smoothing, the chain vertices
+//! sliding along their contours and the others projected onto frame t's own surface sheet by sheet: a
+//! vertex lands only on a part of the surface facing its own way, never on the nearest point of another
+//! sheet (the inner and outer walls of a myocardium lie millimetres apart). Last, local untangling and
+//! the small-angle repair (angle_repair.h), moves within the surface.
 //! Frames do not wait for each other, so they run in parallel and the output does not depend on the
 //! thread count.
 
