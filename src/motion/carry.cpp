@@ -20,6 +20,7 @@
 #include "contour4d/metrics/topology.h"
 #include "contour4d/motion/contour_matching.h"
 #include "contour4d/surface/angle_repair.h"
+#include "contour4d/surface/smoothing.h"
 #include "contour4d/surface/surface_projector.h"
 
 namespace c4d {
@@ -216,20 +217,6 @@ std::vector<Vec3> thin_plate_guess(const SparseMatrix& q, const ThinPlate& tp, c
   return x;
 }
 
-// Area-weighted vertex normals (unit; zero where undefined).
-std::vector<Vec3> vertex_normals(const std::vector<Vec3>& x, const std::vector<Triangle>& tris) {
-  std::vector<Vec3> n(x.size(), Vec3{});
-  for (const Triangle& t : tris) {
-    const Vec3 c = cross(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]);
-    for (std::uint32_t v : t) n[v] += c;
-  }
-  for (Vec3& v : n) {
-    const double l = norm(v);
-    v = l > 0 ? v / l : Vec3{};
-  }
-  return n;
-}
-
 // Sheet-aware projection of the free vertices onto the frame's surface. A vertex without a hint asks the
 // tree for its closest point; where that faces away (another sheet), it walks instead from a neighbour
 // that landed, which stays on the neighbour's sheet. Vertices that find no landing keep their place.
@@ -239,7 +226,7 @@ std::size_t project_on_sheet(std::vector<Vec3>& x, const std::vector<char>& skip
                              const std::vector<Triangle>& tris, const SurfaceProjector& surface,
                              std::vector<std::int32_t>& hints, double sheet_cos, std::vector<Vec3>& landing,
                              std::vector<double>* moved = nullptr) {
-  const std::vector<Vec3> normals = vertex_normals(x, tris);
+  const std::vector<Vec3> normals = vertex_normals(TriangleMesh{x, tris});
   landing = normals;
   std::vector<char> landed(x.size(), 0);
   std::vector<Vec3> p = x;
