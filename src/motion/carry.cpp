@@ -72,6 +72,7 @@ struct FrameTargets {
   std::vector<char> fixed;   // per vertex
   std::vector<Vec3> target;  // per vertex (meaningful where fixed)
   std::vector<std::int32_t> line;        // per vertex: index into `lines`, −1 when not on a matched chain
+  std::vector<char> orphan;              // per vertex: on a chain whose contour vanished, split or merged
   std::vector<std::vector<Vec3>> lines;  // the matched contours of frame t
   std::vector<MatchedLoop> loops;
   int matched = 0, unmatched = 0;
@@ -112,6 +113,8 @@ void match_slice(const std::vector<const Chain*>& chains, const Slice* slice, co
                  const CarryOptions& opt, FrameTargets& out) {
   if (!slice) {
     out.unmatched += static_cast<int>(chains.size());
+    for (const Chain* c : chains)
+      for (std::uint32_t v : c->loop) out.orphan[v] = 1;
     return;
   }
   const Plane& pl = chains.front()->plane;
@@ -131,6 +134,7 @@ void match_slice(const std::vector<const Chain*>& chains, const Slice* slice, co
     const int partner = one_to_one_partner(sim, i, opt.threshold);
     if (partner < 0) {
       ++out.unmatched;
+      for (std::uint32_t v : chains[i]->loop) out.orphan[v] = 1;
       continue;
     }
     const ContourMatch m = match_contour(a[i], b[static_cast<std::size_t>(partner)]);
@@ -155,6 +159,7 @@ FrameTargets match_frame(const Sequence& seq, const std::map<int, std::vector<co
   out.fixed.assign(x0.size(), 0);
   out.target.assign(x0.size(), Vec3{});
   out.line.assign(x0.size(), -1);
+  out.orphan.assign(x0.size(), 0);
   const Frame& frame = seq.frames[t];
   for (const auto& [id, chains] : by_slice) {
     const auto it = std::find_if(frame.slices.begin(), frame.slices.end(), [id = id](const Slice& s) { return s.id == id; });
@@ -283,67 +288,88 @@ void relax_tangentially(std::vector<Vec3>& x, const Rings& rings, const std::vec
   x = std::move(out);
 }
 
-// Where frame t's surface ends short of (or beyond) frame 0's past the last slice whose chains it matched
-// (an apex or base retreating through a slice plane), the thin-plate guess only extrapolates. There, the
-// end of frame 0's mesh is scaled onto frame t's: about the nearest matched chain of that last slice, in
-// the plane by the ratio of the chain's and its contour's radii, along the normal by the ratio of the
-// ends' distances from that slice.
-// Only an end that retreated is scaled: frame 0 had contours past that slice and frame t has none (a slice
-// whose contours matched nothing, e.g. split, is left to the projection).
-void rescale_ends(std::vector<Vec3>& guess, const std::vector<Vec3>& x0, const FrameTargets& ft, const TriangleMesh& own,
-                  const Frame& first, const Frame& frame, Vec3 normal) {
-  if (ft.loops.empty() || own.positions.empty()) return;
-  auto outermost = [](const Frame& f, double& lo, double& hi) {  // the frame's outermost slices with contours
-    lo = 1e300;
-    hi = -1e300;
-    for (const Slice& sl : f.slices)
-      if (!sl.contours.empty()) {
-        lo = std::min(lo, sl.offset);
-        hi = std::max(hi, sl.offset);
-      }
-  };
-  double s_lo, s_hi, f0_lo, f0_hi;
-  outermost(frame, s_lo, s_hi);
-  outermost(first, f0_lo, f0_hi);
-  double m_lo = 1e300, m_hi = -1e300, e0_lo = 1e300, e0_hi = -1e300, et_lo = 1e300, et_hi = -1e300;
-  for (const MatchedLoop& l : ft.loops) {
-    m_lo = std::min(m_lo, l.height);
-    m_hi = std::max(m_hi, l.height);
+// Distance along the ray o + s·d (s > 0) to the first triangle of (x, tris) it hits, among the triangles
+// `use` accepts whose normal faces the ray's way (`facing` > 0) or against it (< 0); −1 when none
+// (Möller–Trumbore over every triangle: a few rays per frame).
+template <class Use>
+double first_hit(Vec3 o, Vec3 d, const std::vector<Vec3>& x, const std::vector<Triangle>& tris, int facing, Use use) {
+  double best = -1;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    if (!use(k)) continue;
+    const Triangle& t = tris[k];
+    const Vec3 e1 = x[t[1]] - x[t[0]], e2 = x[t[2]] - x[t[0]];
+    if ((dot(cross(e1, e2), d) > 0 ? 1 : -1) != facing) continue;
+    const Vec3 p = cross(d, e2);
+    const double det = dot(e1, p);
+    if (std::abs(det) < 1e-12) continue;
+    const Vec3 s = o - x[t[0]];
+    const double u = dot(s, p) / det;
+    if (u < 0 || u > 1) continue;
+    const Vec3 q = cross(s, e1);
+    const double v = dot(d, q) / det;
+    if (v < 0 || u + v > 1) continue;
+    const double h = dot(e2, q) / det;
+    if (h > 1e-9 && (best < 0 || h < best)) best = h;
   }
-  for (const Vec3& p : x0) {
-    e0_lo = std::min(e0_lo, dot(p, normal));
-    e0_hi = std::max(e0_hi, dot(p, normal));
-  }
-  for (const Vec3& p : own.positions) {
-    et_lo = std::min(et_lo, dot(p, normal));
-    et_hi = std::max(et_hi, dot(p, normal));
-  }
-  const double tol = 1e-6 * std::max(1.0, std::abs(m_hi) + std::abs(m_lo));
-  auto end_of = [&](double m, double e0, double et, double h, Vec3 p) {
-    const MatchedLoop* best = nullptr;
-    double bd = 1e300;
-    for (const MatchedLoop& l : ft.loops) {
-      if (std::abs(l.height - m) > tol) continue;
-      const Vec3 d = p - l.c0;
-      const double in_plane = norm(d - dot(d, normal) * normal);
-      if (in_plane < bd) {
-        bd = in_plane;
-        best = &l;
+  return best;
+}
+
+// A retreating dome: the vertices off the matched chains that hang from exactly one matched chain and
+// hold a chain whose contour vanished (an apex or base, or a myocardium's cavity, that moved back
+// through a slice plane). The thin-plate guess only extrapolates there, far off. Frame 0's region is
+// scaled onto frame t's dome about that chain: in the plane by the ratio of the chain's and its contour's
+// equal-area radii, along the normal by the ratio of the domes' heights at the contour's centroid (the
+// first sheet a ray from it meets that faces as frame 0's dome does: a cavity's dome inside an apex faces
+// the other way).
+void rescale_retreating_domes(std::vector<Vec3>& guess, const std::vector<Vec3>& x0, const std::vector<Triangle>& tris,
+                              const Rings& rings, const FrameTargets& ft, const TriangleMesh& own, Vec3 normal) {
+  const std::size_t n = x0.size();
+  std::vector<std::int32_t> region(n, -1);
+  std::int32_t regions = 0;
+  for (std::size_t seed = 0; seed < n; ++seed) {
+    if (ft.line[seed] >= 0 || region[seed] >= 0) continue;
+    const std::int32_t id = regions++;
+    std::vector<std::size_t> members{seed};
+    region[seed] = id;
+    std::vector<std::int32_t> touching;
+    bool retreated = false;
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      retreated = retreated || ft.orphan[members[k]];
+      for (std::uint32_t u : rings[members[k]]) {
+        if (ft.line[u] >= 0) {
+          if (std::find(touching.begin(), touching.end(), ft.line[u]) == touching.end()) touching.push_back(ft.line[u]);
+        } else if (region[u] < 0) {
+          region[u] = id;
+          members.push_back(u);
+        }
       }
     }
-    const Vec3 d = p - best->c0;
-    const Vec3 q = d - dot(d, normal) * normal;
-    const double sr = best->r0 > 0 ? best->rt / best->r0 : 1.0;
-    const double sh = std::abs(e0 - m) > 0 ? (et - m) / (e0 - m) : 1.0;
-    return best->ct + sr * q + std::max(0.0, sh) * (h - m) * normal;  // ct lies on the slice's plane
-  };
-  for (std::size_t v = 0; v < x0.size(); ++v) {
-    if (ft.fixed[v]) continue;
-    const double h = dot(x0[v], normal);
-    if (h > m_hi && f0_hi > m_hi + 1e-3 && s_hi <= m_hi + 1e-3)
-      guess[v] = end_of(m_hi, e0_hi, et_hi, h, x0[v]);
-    else if (h < m_lo && f0_lo < m_lo - 1e-3 && s_lo >= m_lo - 1e-3)
-      guess[v] = end_of(m_lo, e0_lo, et_lo, h, x0[v]);
+    if (touching.size() != 1 || !retreated) continue;
+    const MatchedLoop& l = ft.loops[static_cast<std::size_t>(touching.front())];
+    double side = 0;
+    for (std::size_t v : members) side += dot(x0[v], normal) - l.height;
+    const Vec3 dir = side >= 0 ? normal : -normal;
+    auto in_region = [&](std::size_t k) {
+      return region[tris[k][0]] == id || region[tris[k][1]] == id || region[tris[k][2]] == id;
+    };
+    int facing = 0;
+    double h0 = -1;
+    for (int f : {1, -1}) {
+      const double h = first_hit(l.c0, dir, x0, tris, f, in_region);
+      if (h > 0 && (h0 < 0 || h < h0)) {
+        h0 = h;
+        facing = f;
+      }
+    }
+    if (!(h0 > 0) || !(l.r0 > 0)) continue;
+    const double ht = first_hit(l.ct, dir, own.positions, own.triangles, facing, [](std::size_t) { return true; });
+    if (!(ht > 0)) continue;
+    const double sr = l.rt / l.r0, sh = ht / h0;
+    for (std::size_t v : members) {
+      const Vec3 d = x0[v] - l.c0;
+      const double h = dot(d, normal);
+      guess[v] = l.ct + sr * (d - h * normal) + sh * h * normal;  // ct lies on the slice's plane
+    }
   }
 }
 
@@ -441,7 +467,7 @@ MeshSequence carry_frames(const Sequence& seq, const TriangleMesh& frame0,
     fr.fixed_vertices = static_cast<std::size_t>(std::count(ft.fixed.begin(), ft.fixed.end(), 1));
     const TriangleMesh own = surface(t);
     std::vector<Vec3> guess = thin_plate_guess(q, systems[system[t]], x0, ft);
-    rescale_ends(guess, x0, ft, own, seq.frames[0], seq.frames[t], seq.normal);
+    rescale_retreating_domes(guess, x0, frame0.triangles, rings, ft, own, seq.normal);
     out.positions[t] = carry_one(guess, ft, rings, frame0.triangles, own, options, fr);
   });
   return out;

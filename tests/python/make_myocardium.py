@@ -21,7 +21,7 @@ import numpy as np
 import nibabel as nib
 
 
-def shell_frame(shape, pixel, spacing, rot, a_out, c_out, wall, base_z):
+def shell_frame(shape, pixel, spacing, rot, center_z, a_out, c_out, wall, base_z):
     """Labels of one frame: 2 inside the outer ellipsoid and outside the inner one, 3 in the cavity.
 
     The ellipsoids are truncated at base_z (the base plane, open like a real ventricle's base). The
@@ -31,12 +31,12 @@ def shell_frame(shape, pixel, spacing, rot, a_out, c_out, wall, base_z):
     j = (np.arange(ny) - (ny - 1) / 2.0) * pixel
     k = (np.arange(nz) - (nz - 1) / 2.0) * spacing
     X, Y, Z = np.meshgrid(i, j, k, indexing="ij")
-    P = np.stack([X, Y, Z], axis=-1) @ rot  # voxel centres in the body frame (rot: rows = body axes)
+    P = np.stack([X, Y, Z - center_z], axis=-1) @ rot  # voxel centres in the body frame (rot: rows = body axes)
     x, y, z = P[..., 0], P[..., 1], P[..., 2]
     out = (x / a_out) ** 2 + (y / a_out) ** 2 + (z / c_out) ** 2 <= 1.0
     a_in, c_in = a_out - wall, c_out - wall
     inn = (x / a_in) ** 2 + (y / a_in) ** 2 + (z / c_in) ** 2 <= 1.0
-    keep = z <= base_z
+    keep = Z <= base_z  # the base plane is a plane of the image (between two slices)
     lab = np.zeros(shape, np.uint8)
     lab[out & keep] = 2
     lab[inn & keep] = 3
@@ -65,26 +65,30 @@ def main():
     spacing = draw(a.spacing, 8.0, 8.0) if a.spacing is None else a.spacing
     pixel = a.pixel if a.pixel is not None else 1.25
     phase = float(rng.uniform(0, 2 * math.pi))
-    a0 = float(rng.uniform(24.0, 30.0))  # outer short-axis radius at end diastole (mm)
-    c0 = float(rng.uniform(50.0, 60.0))  # outer long semi-axis
+    # Outer semi-axes at end diastole (mm): the ellipsoid's centre lies just below the base plane (a
+    # truncated half-ellipsoid, open at the base) and its apex about one slice above the lowest slice, so
+    # the cavity (the outer shrunk by the wall) closes on the slices above the apex.
+    half = 0.5 * (slices - 1) * spacing
+    base = half - 0.5 * spacing  # between the top two slices
+    a0 = float(rng.uniform(24.0, 30.0))
+    c0 = (base + half - spacing) / 1.1 + float(rng.uniform(-0.5, 0.5)) * spacing
     if a.seed is None:
         phase = 0.0
-        a0, c0 = 27.0, 55.0
-
+        a0, c0 = 27.0, (base + half - spacing) / 1.1
+    center_z = base - 0.1 * c0
     t = math.radians(tilt)
     rot = np.array([[math.cos(t), 0, -math.sin(t)], [0, 1, 0], [math.sin(t), 0, math.cos(t)]]) @ np.array(
         [[math.cos(phase), -math.sin(phase), 0], [math.sin(phase), math.cos(phase), 0], [0, 0, 1]])
     extent = 2 * a0 + 16
     n_in = int(math.ceil(extent / pixel)) | 1
     shape = (n_in, n_in, slices)
-    base_z = 0.5 * (slices - 1) * spacing - 0.5 * spacing  # the base plane between the top two slices
     vox_ml = pixel * pixel * spacing / 1000.0
     labs, truth = [], []
     for f in range(frames):
         # a smooth cycle: contraction peaks at the middle frame (volume scale 1 − contraction)
         s = 0.5 * (1 - math.cos(2 * math.pi * f / frames)) if frames > 1 else 0.0
         scale = (1.0 - contraction * s) ** (1.0 / 3.0)
-        lab = shell_frame(shape, pixel, spacing, rot, a0 * scale, c0 * scale, wall, base_z)
+        lab = shell_frame(shape, pixel, spacing, rot, center_z, a0 * scale, c0 * scale, wall, base)
         labs.append(lab)
         truth.append({"frame": f, "myo_ml": float((lab == 2).sum() * vox_ml), "lv_ml": float((lab == 3).sum() * vox_ml)})
     data = np.stack(labs, axis=-1) if frames > 1 else labs[0]
