@@ -293,8 +293,12 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       "  contour4d reconstruct contours.json --cap open -o out/cfd        # open ends for CFD inlets\n"
       "  contour4d reconstruct ../shared/data/sunnybrook-SC-HF-I-1 -o out/sb   # DICOM-referenced contours\n"
       "  contour4d reconstruct seg.nii.gz --labels acdc --label lv -o out/lv  # label masks (nnU-Net, Slicer)\n"
+      "  contour4d reconstruct seg.nii.gz --labels acdc --label myo --method carry --cycle-ms 800 -o out/myo\n"
+      "                                      # a myocardial wall, every frame on its own; frames 800/N ms apart\n"
+      "  contour4d reconstruct contours.json --strict -o out/lv      # refuse flawed contours instead of repairing them\n"
       "INPUT is a contour JSON file, a biv-me GPFile folder, a Sunnybrook folder or label image(s). Outputs: OUTDIR/mesh.pvd (open in ParaView),\n"
-      "OUTDIR/frames/frame_NNN.{vtp,obj}, OUTDIR/report.json. Coordinates in mm, in the input's patient space.");
+      "OUTDIR/frames/frame_NNN.{vtp,obj}, OUTDIR/report.json. Coordinates in mm, in the input's patient space.\n"
+      "Every frame is checked before anything is written; a frame that fails exits with code 26, naming it.");
   app->add_option("INPUT", args->input, "contour JSON file or GPFile folder")->required();
   app->add_option("-o,--output", args->output, "output folder (replaced atomically)")->required();
   app->add_option("--frame", args->frame, "reconstruct this frame only (0-based)");

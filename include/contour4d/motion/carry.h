@@ -7,8 +7,8 @@
 //! Per frame t: frame 0's contour chains are matched one-to-one to frame t's contours (same nesting parity)
 //! and put on them by arc length (contour_matching.h); the rest of the mesh follows by a thin-plate
 //! (biharmonic) displacement, one factorisation per set of matched chains, shared by the frames that have
-//! it; where an end of the surface retreated past a slice (an apex or base whose contour vanished), that end
-//! of frame 0's mesh is scaled onto frame t's. Then rounds of tangential smoothing, the chain vertices
+//! it; where a dome retreated through a slice (an apex, a base or a myocardium's cavity whose contour
+//! vanished), that dome of frame 0's mesh is scaled onto frame t's. Then rounds of tangential smoothing, the chain vertices
 //! sliding along their contours and the others projected onto frame t's own surface sheet by sheet: a
 //! vertex lands only on a part of the surface facing its own way, never on the nearest point of another
 //! sheet (the inner and outer walls of a myocardium lie millimetres apart). Last, local untangling and
