@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <numbers>
 
@@ -50,7 +51,7 @@ SparseMatrix bilaplacian(const Rings& rings) {
   std::vector<Eigen::Triplet<double>> t;
   for (std::size_t i = 0; i < rings.size(); ++i) {
     t.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);
-    for (std::uint32_t j : rings[i])
+    for (std::uint32_t j : rings[i])  // (an isolated vertex has no neighbour terms)
       t.emplace_back(static_cast<int>(i), static_cast<int>(j), -1.0 / static_cast<double>(rings[i].size()));
   }
   const auto n = static_cast<int>(rings.size());
@@ -459,17 +460,25 @@ MeshSequence carry_frames(const Sequence& seq, const TriangleMesh& frame0,
   out.times_ms.resize(n);
   for (std::size_t t = 0; t < n; ++t) out.times_ms[t] = seq.frames[t].time_ms;
   if (n > 0) out.positions[0] = x0;
+  // A frame that fails is reported after all have run: the lowest one, whatever the scheduling.
+  std::vector<std::exception_ptr> errors(n);
   tbb::parallel_for(std::size_t{1}, std::max<std::size_t>(1, n), [&](std::size_t t) {
-    const FrameTargets& ft = targets[t];
-    CarryFrameReport& fr = rep.frames[t];
-    fr.matched_contours = ft.matched;
-    fr.unmatched_chains = ft.unmatched;
-    fr.fixed_vertices = static_cast<std::size_t>(std::count(ft.fixed.begin(), ft.fixed.end(), 1));
-    const TriangleMesh own = surface(t);
-    std::vector<Vec3> guess = thin_plate_guess(q, systems[system[t]], x0, ft);
-    rescale_retreating_domes(guess, x0, frame0.triangles, rings, ft, own, seq.normal);
-    out.positions[t] = carry_one(guess, ft, rings, frame0.triangles, own, options, fr);
+    try {
+      const FrameTargets& ft = targets[t];
+      CarryFrameReport& fr = rep.frames[t];
+      fr.matched_contours = ft.matched;
+      fr.unmatched_chains = ft.unmatched;
+      fr.fixed_vertices = static_cast<std::size_t>(std::count(ft.fixed.begin(), ft.fixed.end(), 1));
+      const TriangleMesh own = surface(t);
+      std::vector<Vec3> guess = thin_plate_guess(q, systems[system[t]], x0, ft);
+      rescale_retreating_domes(guess, x0, frame0.triangles, rings, ft, own, seq.normal);
+      out.positions[t] = carry_one(guess, ft, rings, frame0.triangles, own, options, fr);
+    } catch (...) {
+      errors[t] = std::current_exception();
+    }
   });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   return out;
 }
 
