@@ -82,8 +82,7 @@ nlohmann::json checks_json(const ResultCheck& check) {
   return a;
 }
 
-// The output gate: every frame checked before anything is written. A failing result is written only
-// where --keep-failed asks, marked FAILED, and the run ends with ErrorCode::InvalidResult.
+// Every frame's output checks (the contours of --frame's frame only).
 ResultCheck run_checks(const ReconstructArgs& a, const Sequence& seq, const std::string& label, bool closed,
                        const MeshSequence& result) {
   ResultCheckOptions opt;
@@ -95,6 +94,8 @@ ResultCheck run_checks(const ReconstructArgs& a, const Sequence& seq, const std:
   return check;
 }
 
+// The output gate: every frame checked before anything is written. A failing result is written only
+// where --keep-failed asks, marked FAILED, and the run ends with ErrorCode::InvalidResult.
 void check_before_writing(const ReconstructArgs& a, const ResultCheck& check, const MeshSequence& result,
                           nlohmann::json& report) {
   report["checks"] = {{"ok", check.ok()}, {"volume_tolerance", a.volume_tolerance}, {"frames", checks_json(check)}};
@@ -113,6 +114,38 @@ void check_before_writing(const ReconstructArgs& a, const ResultCheck& check, co
   }
   throw SolverError(ErrorCode::InvalidResult, Location{a.input},
                     "the reconstruction failed its checks: " + check.summary(), hint);
+}
+
+// The default morph failed its checks: it can fold a frame onto a neighbouring sheet (a myocardium's two
+// walls). Every frame is then carried from frame 0 on its own, and that result replaces the morph's if it
+// passes the checks.
+void carry_instead(const ReconstructArgs& a, const Sequence& seq, const Reconstruct4DOptions& opt, bool closed,
+                   MeshSequence& result, Reconstruct4DReport& rr, ResultCheck& check, nlohmann::json& report) {
+  std::cout << fmt::format("  the frame-after-frame morph failed its checks ({}); carrying every frame from frame 0 "
+                           "instead\n", check.summary()) << std::flush;
+  Reconstruct4DOptions carry = opt;
+  carry.all_frames = AllFramesMethod::Carry;
+  Reconstruct4DReport rc;
+  MeshSequence other = reconstruct_4d(seq, carry, &rc);
+  ResultCheck other_check = run_checks(a, seq, opt.surface.label, closed, other);
+  report["all_frames_fallback"] = {{"morph_fault", check.summary()}, {"carry_ok", other_check.ok()}};
+  if (!other_check.ok()) return;
+  result = std::move(other);
+  rr = std::move(rc);
+  check = std::move(other_check);
+  report["options"]["method"] = "carry";
+}
+
+// The input summary: what was read, the notes of the reader and the first repairs (flushed before the work).
+void print_input_summary(const ReconstructArgs& a, const InputResult& read) {
+  std::cout << fmt::format("contour4d reconstruct: {} ({}), {} frames\n", a.input, read.format, read.sequence.frames.size());
+  for (const std::string& n : read.notes) std::cout << "  " << n << "\n";
+  for (std::size_t k = 0; k < read.repairs.size() && k < 10; ++k) {
+    const ContourRepair& r = read.repairs[k];
+    std::cout << fmt::format("    repaired frame {}, slice {}, contour {}: {}\n", r.frame, r.slice, r.contour, r.detail);
+  }
+  if (read.repairs.size() > 10) std::cout << fmt::format("    ... and {} more\n", read.repairs.size() - 10);
+  std::cout << std::flush;
 }
 
 int run_reconstruct(const ReconstructArgs& a) {
@@ -147,14 +180,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   ProgressBar bar;
   opt.progress = [&bar](const char* stage, int done, int total) { bar.update(stage, done, total); };
 
-  std::cout << fmt::format("contour4d reconstruct: {} ({}), {} frames\n", a.input, read.format, seq.frames.size());
-  for (const std::string& n : read.notes) std::cout << "  " << n << "\n";
-  for (std::size_t k = 0; k < read.repairs.size() && k < 10; ++k) {
-    const ContourRepair& r = read.repairs[k];
-    std::cout << fmt::format("    repaired frame {}, slice {}, contour {}: {}\n", r.frame, r.slice, r.contour, r.detail);
-  }
-  if (read.repairs.size() > 10) std::cout << fmt::format("    ... and {} more\n", read.repairs.size() - 10);
-  std::cout << std::flush;
+  print_input_summary(a, read);
 
   nlohmann::json report = {
       {"tool", "contour4d 0.1.0"},
@@ -189,24 +215,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     Reconstruct4DReport rr;
     result = reconstruct_4d(seq, opt, &rr);
     check = run_checks(a, seq, opt.surface.label, closed, result);
-    if (!check.ok() && a.method == "rbf-project") {
-      // The frame-after-frame morph can fold a frame onto a neighbouring sheet (a myocardium's two walls):
-      // every frame is then carried from frame 0 on its own, and kept if that passes the checks.
-      std::cout << fmt::format("  the frame-after-frame morph failed its checks ({}); carrying every frame from frame 0 "
-                               "instead\n", check.summary()) << std::flush;
-      Reconstruct4DOptions carry = opt;
-      carry.all_frames = AllFramesMethod::Carry;
-      Reconstruct4DReport rc;
-      MeshSequence other = reconstruct_4d(seq, carry, &rc);
-      ResultCheck other_check = run_checks(a, seq, opt.surface.label, closed, other);
-      report["all_frames_fallback"] = {{"morph_fault", check.summary()}, {"carry_ok", other_check.ok()}};
-      if (other_check.ok()) {
-        result = std::move(other);
-        rr = std::move(rc);
-        check = std::move(other_check);
-        report["options"]["method"] = "carry";
-      }
-    }
+    if (!check.ok() && a.method == "rbf-project") carry_instead(a, seq, opt, closed, result, rr, check, report);
     nlohmann::json frames = nlohmann::json::array();
     for (std::size_t f = 0; f < result.positions.size(); ++f) {
       const MorphFrameReport& mf = rr.morph.frames[f];

@@ -15,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/connect/similarity.h"
+#include "contour4d/core/contour.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/core/sparse_solve.h"
 #include "contour4d/motion/chains.h"
@@ -85,11 +86,7 @@ Vec2 centroid(const std::vector<Vec2>& p) {
   return (1.0 / static_cast<double>(std::max<std::size_t>(1, p.size()))) * c;
 }
 
-double equal_area_radius(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (std::size_t k = 0; k < p.size(); ++k) a += cross(p[k], p[(k + 1) % p.size()]);
-  return std::sqrt(std::abs(0.5 * a) / std::numbers::pi);
-}
+double equal_area_radius(const std::vector<Vec2>& p) { return std::sqrt(std::abs(signed_area(p)) / std::numbers::pi); }
 
 std::vector<Vec2> flatten(const Plane& pl, const std::vector<Vec3>& pts) {
   std::vector<Vec2> out;
