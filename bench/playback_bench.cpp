@@ -18,7 +18,7 @@
 #include <string>
 
 #include "contour4d/io/gltf.h"
-#include "contour4d/io/model_c4d.h"
+#include "contour4d/temporal/model_c4d.h"
 #include "contour4d/render/renderer.h"
 #include "contour4d/temporal/compact.h"
 #include "contour4d/temporal/displacement_map.h"

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "contour4d/io/input.h"
+#include "contour4d/pipeline/input.h"
 #include "contour4d/phantoms/phantom.h"
 #include "contour4d/surface/reconstruct.h"
 

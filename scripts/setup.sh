@@ -13,7 +13,7 @@ PACKAGES=(
   libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libegl-dev libgl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri
-  python3 python3-numpy python3-vtk9 python3-nibabel python3-skimage python3-matplotlib python3-pil
+  python3 python3-numpy python3-pytest python3-meshio pybind11-dev snakemake chromium python3-vtk9 python3-nibabel python3-skimage python3-matplotlib python3-pil
   libegl-mesa0 mesa-utils
 )
 

@@ -47,7 +47,7 @@ if [ $run_sanitize -eq 1 ]; then
   export ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   export LSAN_OPTIONS=suppressions=$root/tests/lsan.supp   # Mesa/EGL driver frames only
   # Warnings are errors in the release build; GCC 12 under ASan warns falsely inside libstdc++ (<regex>).
-  build_and_test "$root/build-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DC4D_SANITIZE=ON -DC4D_BUILD_BENCH=OFF -DC4D_STRICT=OFF \
+  build_and_test "$root/build-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DC4D_SANITIZE=ON -DC4D_BUILD_BENCH=OFF -DC4D_BUILD_PYTHON=OFF -DC4D_STRICT=OFF \
     -DC4D_HEAVY_TESTS=OFF
 fi
 

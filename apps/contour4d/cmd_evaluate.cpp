@@ -8,7 +8,7 @@
 
 #include "cli.h"
 #include "contour4d/core/errors.h"
-#include "contour4d/io/input.h"
+#include "contour4d/pipeline/input.h"
 #include "contour4d/io/mesh_output.h"
 #include "contour4d/io/output_dir.h"
 #include "contour4d/metrics/evaluation.h"

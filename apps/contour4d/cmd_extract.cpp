@@ -11,7 +11,7 @@
 #include "input_options.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/io/contours_json.h"
-#include "contour4d/io/input.h"
+#include "contour4d/pipeline/input.h"
 #include "contour4d/io/output_dir.h"
 
 namespace c4d::cli {

@@ -8,12 +8,11 @@
 
 #include "cli.h"
 #include "contour4d/core/errors.h"
-#include "contour4d/io/gltf.h"
 #include "contour4d/io/mesh_output.h"
-#include "contour4d/io/model_c4d.h"
+#include "contour4d/temporal/model_c4d.h"
 #include "contour4d/io/output_dir.h"
+#include "contour4d/pipeline/pack_run.h"
 #include "contour4d/temporal/compact.h"
-#include "contour4d/temporal/interpolate.h"
 #include "contour4d/temporal/sequence.h"
 
 namespace c4d::cli {
@@ -22,72 +21,43 @@ namespace {
 struct PackArgs {
   std::string input;
   std::string output;
-  double tolerance = 0.05;
-  std::size_t controls = 600;
-  std::size_t resample = 0;
-  std::string interp = "catmull-rom";
-  std::string error = "vertex";
-  bool no_gltf = false;
-  bool gltf_step = false;
+  PackRunOptions pack;
 };
-
-TimeInterpolation parse_interp(const std::string& s) {
-  if (s == "linear") return TimeInterpolation::Linear;
-  if (s == "step") return TimeInterpolation::Step;
-  return TimeInterpolation::CatmullRomPeriodic;
-}
-
-MeshSequence maybe_resample(MeshSequence seq, std::size_t n, const std::string& interp) {
-  return n > 0 ? resample_sequence(seq, n, parse_interp(interp)) : seq;
-}
 
 int run_pack(const PackArgs& a) {
   const std::filesystem::path in(a.input);
-  const MeshSequence seq = maybe_resample(load_mesh_sequence(in), a.resample, a.interp);
-  CompactOptions opt;
-  opt.tolerance = a.tolerance;
-  opt.control_vertices = a.controls;
-  opt.error = a.error == "surface" ? CompactError::Surface : CompactError::Vertex;
-  CompactStats st;
-  const CompactModel model = compact_encode(seq, opt, nullptr, &st);
-  const ModelC4dWriteOptions write;  // zstd level 19 (model_c4d.h)
-  const std::string bytes = serialize_model_c4d(model, write);
-  // The zstd layer: the payload before compression (an uncompressed file less its header) against the stored one.
-  ModelC4dWriteOptions raw_options = write;
-  raw_options.compress = false;
-  const std::size_t raw_payload = serialize_model_c4d(model, raw_options).size() - kModelC4dHeaderBytes;
-  const std::size_t stored_payload = bytes.size() - kModelC4dHeaderBytes;
+  const PackRun run = pack_run(load_mesh_sequence(in), a.pack);
+  const CompactStats& st = run.stats;
   const std::filesystem::path dir = std::filesystem::is_directory(in) ? in : in.parent_path();
   const std::filesystem::path out = a.output.empty() ? dir / "model.c4d" : std::filesystem::path(a.output);
-  write_file_atomic(out, bytes);
-  const std::size_t nv = seq.positions[0].size(), nt = seq.triangles.size(), nf = seq.positions.size();
+  write_file_atomic(out, run.c4d);
+  const std::size_t nv = run.input.positions[0].size(), nt = run.input.triangles.size(), nf = run.input.positions.size();
+  const std::size_t bytes = run.c4d.size();
   // Per-frame baselines: our VTP writer (Float64 points, Int64 connectivity and offsets) and a
   // binary PLY (float32 xyz, uchar count + 3 int32 per face), headers not counted.
   const double vtp = static_cast<double>(nv * 24 + nt * 32) * static_cast<double>(nf);
   const double ply = static_cast<double>(nv * 12 + nt * 13) * static_cast<double>(nf);
   std::cout << fmt::format("packed {} frames, {} vertices, {} triangles into {} ({} bytes)\n", nf, nv, nt,
-                           out.string(), bytes.size())
+                           out.string(), bytes)
             << fmt::format("  zstd level {}: payload {} B before compression, {} B stored ({:.2f}x); file {} B with the "
                            "{}-byte header\n",
-                           write.level, raw_payload, stored_payload,
-                           static_cast<double>(raw_payload) / static_cast<double>(stored_payload), bytes.size(),
+                           ModelC4dWriteOptions{}.level, run.raw_payload, run.stored_payload,
+                           static_cast<double>(run.raw_payload) / static_cast<double>(run.stored_payload), bytes,
                            kModelC4dHeaderBytes)
             << fmt::format("  parts before compression: connectivity {} B, frame-0 positions {} B, control motion {} B "
                            "({} control vertices), corrections {} B ({} vertex-frames)\n",
-                           st.index_bytes, st.position_bytes, st.motion_bytes, model.control.size(), st.correction_bytes,
+                           st.index_bytes, st.position_bytes, st.motion_bytes, run.model.control.size(), st.correction_bytes,
                            st.corrected_vertices)
             << fmt::format("  error vs input: vertex to same vertex max {:.4f} mm, RMS {:.4f} mm; vertex to surface max "
                            "{:.4f} mm, input vertex to decoded surface max {:.4f} mm (tolerance {} mm on {})\n",
-                           st.max_error, st.rms_error, st.max_surface_error, st.max_surface_error_back, a.tolerance, a.error)
+                           st.max_error, st.rms_error, st.max_surface_error, st.max_surface_error_back, a.pack.tolerance,
+                           a.pack.error)
             << fmt::format("  per-frame meshes: VTP {:.0f} B ({:.0f}x larger), binary PLY {:.0f} B ({:.0f}x larger)\n", vtp,
-                           vtp / static_cast<double>(bytes.size()), ply, ply / static_cast<double>(bytes.size()));
-  if (!a.no_gltf) {
-    GltfOptions g;
-    g.step = a.gltf_step;
-    const std::string glb = gltf_glb_bytes(seq, g);
+                           vtp / static_cast<double>(bytes), ply, ply / static_cast<double>(bytes));
+  if (!run.glb.empty()) {
     const std::filesystem::path gp = std::filesystem::path(out).replace_extension(".glb");
-    write_file_atomic(gp, glb);
-    std::cout << fmt::format("  glTF {} ({} bytes, {} morph targets, metres, Y up)\n", gp.string(), glb.size(), nf);
+    write_file_atomic(gp, run.glb);
+    std::cout << fmt::format("  glTF {} ({} bytes, {} morph targets, metres, Y up)\n", gp.string(), run.glb.size(), nf);
   }
   return 0;
 }
@@ -100,7 +70,7 @@ struct UnpackArgs {
 };
 
 int run_unpack(const UnpackArgs& a) {
-  const MeshSequence seq = maybe_resample(compact_decode(read_model_c4d(a.input)), a.resample, a.interp);
+  const MeshSequence seq = resample_if(compact_decode(read_model_c4d(a.input)), a.resample, a.interp);
   OutputDir out(a.output);
   write_mesh_sequence(out, seq, "unpacked from " + std::filesystem::path(a.input).filename().string());
   out.commit();
@@ -128,17 +98,17 @@ void add_pack_command(CLI::App& root, std::vector<Command>& commands) {
   auto args = std::make_shared<PackArgs>();
   app->add_option("INPUT", args->input, "output folder of a reconstruction (mesh.pvd, frames/) or a model.c4d")->required();
   app->add_option("-o,--output", args->output, "model file (default INPUT/model.c4d); the .glb goes beside it");
-  app->add_option("--tolerance", args->tolerance, "max error of any vertex in any frame (mm)")->default_val(0.05)->check(CLI::PositiveNumber);
-  app->add_option("--error", args->error,
+  app->add_option("--tolerance", args->pack.tolerance, "max error of any vertex in any frame (mm)")->default_val(0.05)->check(CLI::PositiveNumber);
+  app->add_option("--error", args->pack.error,
                   "what --tolerance bounds: vertex (each decoded vertex vs the same input vertex; exact "
                   "correspondence) or surface (decoded vertex vs the input surface; vertices may slide along it)")
       ->check(CLI::IsMember({"vertex", "surface"}))
       ->default_val("vertex");
-  app->add_option("--controls", args->controls, "number of control vertices carrying the motion")->default_val(600);
-  app->add_option("--resample", args->resample, "resample to N frames before packing (0: keep)")->default_val(0);
-  app->add_option("--interp", args->interp, "interpolation for --resample")->check(CLI::IsMember({"linear", "catmull-rom", "step"}))->default_val("catmull-rom");
-  app->add_flag("--no-gltf", args->no_gltf, "do not write the .glb");
-  app->add_flag("--gltf-step", args->gltf_step, "STEP animation in the .glb instead of LINEAR");
+  app->add_option("--controls", args->pack.controls, "number of control vertices carrying the motion")->default_val(600);
+  app->add_option("--resample", args->pack.resample, "resample to N frames before packing (0: keep)")->default_val(0);
+  app->add_option("--interp", args->pack.interp, "interpolation for --resample")->check(CLI::IsMember({"linear", "catmull-rom", "step"}))->default_val("catmull-rom");
+  app->add_flag_callback("--no-gltf", [args] { args->pack.gltf = false; }, "do not write the .glb");
+  app->add_flag("--gltf-step", args->pack.gltf_step, "STEP animation in the .glb instead of LINEAR");
   commands.push_back({app, [args] { return run_pack(*args); }});
 }
 

@@ -12,7 +12,7 @@
 
 #include "cli.h"
 #include "contour4d/core/errors.h"
-#include "contour4d/io/model_c4d.h"
+#include "contour4d/temporal/model_c4d.h"
 #include "contour4d/io/output_dir.h"
 #include "contour4d/temporal/compact.h"
 #include "contour4d/temporal/displacement_map.h"

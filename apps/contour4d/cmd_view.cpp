@@ -10,7 +10,7 @@
 
 #include "cli.h"
 #include "contour4d/core/errors.h"
-#include "contour4d/io/input.h"
+#include "contour4d/pipeline/input.h"
 #include "contour4d/temporal/displacement_map.h"
 #include "contour4d/temporal/sequence.h"
 #ifdef C4D_HAVE_RENDER

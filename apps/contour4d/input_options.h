@@ -4,7 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "contour4d/io/input.h"
+#include "contour4d/pipeline/input.h"
 
 namespace c4d::cli {
 

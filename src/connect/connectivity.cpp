@@ -11,7 +11,7 @@
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/errors.h"
 
-#include "../core/union_find_internal.h"
+#include "contour4d/core/union_find.h"
 
 namespace c4d {
 namespace {

@@ -1,4 +1,3 @@
-# Compact 4D model file and glTF export (paths relative to src/).
+# glTF export of a 4D mesh (paths relative to src/).
 target_sources(contour4d PRIVATE
-  io/model_c4d.cpp
   io/gltf.cpp)

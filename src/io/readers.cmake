@@ -1,5 +1,4 @@
-# Sources of the readers (contour JSON, GPFile, input dispatch), paths relative to src/.
+# Sources of the readers (contour JSON, GPFile), paths relative to src/.
 target_sources(contour4d PRIVATE
   io/contours_json.cpp
-  io/gpfile.cpp
-  io/input.cpp)
+  io/gpfile.cpp)

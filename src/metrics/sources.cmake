@@ -1,6 +1,8 @@
 # Sources of the metrics stage (paths relative to src/). CGAL is included only by
 # triangle_distance.cpp (AABB tree) and topology.cpp (box intersection, exact predicates).
 target_sources(contour4d PRIVATE
+  metrics/surface_projector.cpp
+  metrics/surface_walk.cpp
   metrics/triangle_distance.cpp
   metrics/distance.cpp
   metrics/conformity.cpp

@@ -30,7 +30,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "../core/union_find_internal.h"
+#include "contour4d/core/union_find.h"
 
 namespace c4d {
 namespace {

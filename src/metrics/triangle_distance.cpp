@@ -1,4 +1,4 @@
-// Exact point-to-triangle distances (surface/surface_projector.h, CGAL's AABB tree): the closest
+// Exact point-to-triangle distances (metrics/surface_projector.h, CGAL's AABB tree): the closest
 // point on the surface is computed per query, not approximated from vertices. Used by conformity (Lim et
 // al. 2014, "Mesh Conformity") and by the surface-to-surface accuracy of Table 5.
 #include "triangle_distance_internal.h"

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "contour4d/core/mesh.h"
-#include "contour4d/surface/surface_projector.h"
+#include "contour4d/metrics/surface_projector.h"
 
 namespace c4d::metrics_internal {
 

@@ -23,7 +23,7 @@
 #include "contour4d/motion/contour_matching.h"
 #include "contour4d/surface/angle_repair.h"
 #include "contour4d/surface/smoothing.h"
-#include "contour4d/surface/surface_projector.h"
+#include "contour4d/metrics/surface_projector.h"
 
 namespace c4d {
 

@@ -18,7 +18,7 @@
 
 #include "contour4d/core/contour.h"
 #include "contour4d/core/sparse_solve.h"
-#include "contour4d/surface/surface_projector.h"
+#include "contour4d/metrics/surface_projector.h"
 
 namespace c4d {
 namespace {

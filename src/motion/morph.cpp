@@ -44,7 +44,7 @@
 #include "contour4d/motion/vertical_deformation.h"
 #include "contour4d/surface/angle_repair.h"
 #include "contour4d/motion/chains.h"
-#include "contour4d/surface/surface_projector.h"
+#include "contour4d/metrics/surface_projector.h"
 #include "simd_avx_internal.h"
 #include "sweep_lanes_internal.h"
 

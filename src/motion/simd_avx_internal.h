@@ -1,11 +1,11 @@
 #pragma once
 // The morph's four-lane (AVX) steps, compiled in simd_avx.cpp with AVX enabled: call them only where
-// avx_available() (core/avx_internal.h) says the CPU runs them. Each gives what its two-lane (SSE2) and
+// avx_available() (core/cpu.h) says the CPU runs them. Each gives what its two-lane (SSE2) and
 // one-point forms give, bit for bit (sweep_lanes_internal.h, rbf_lanes_internal.h).
 
 #include <cstddef>
 
-#include "../core/avx_internal.h"
+#include "contour4d/core/cpu.h"
 #include "contour4d/core/vec.h"
 #include "sweep_arrays_internal.h"
 

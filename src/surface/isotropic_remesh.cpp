@@ -16,7 +16,7 @@
 #include <numeric>
 
 #include "contour4d/core/radix_sort.h"
-#include "contour4d/surface/surface_walk.h"
+#include "contour4d/metrics/surface_walk.h"
 
 namespace c4d {
 namespace {

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "../core/union_find_internal.h"
+#include "contour4d/core/union_find.h"
 #include "contour4d/metrics/topology.h"
 
 namespace c4d {

@@ -30,7 +30,7 @@
 #include "contour4d/surface/refine.h"
 #include "contour4d/surface/resample.h"
 #include "contour4d/surface/smoothing.h"
-#include "contour4d/surface/surface_walk.h"
+#include "contour4d/metrics/surface_walk.h"
 #include "contour4d/surface/tiling.h"
 
 namespace c4d {

@@ -9,7 +9,5 @@ target_sources(contour4d PRIVATE
   surface/refine.cpp
   surface/isotropic_remesh.cpp
   surface/angle_repair.cpp
-  surface/surface_projector.cpp
-  surface/surface_walk.cpp
   surface/mesh_check.cpp
   surface/reconstruct.cpp)

@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "contour4d/core/errors.h"
-#include "contour4d/io/model_c4d.h"
+#include "contour4d/temporal/model_c4d.h"
 #include "contour4d/temporal/compact.h"
 
 namespace c4d {

@@ -3,4 +3,5 @@ target_sources(contour4d PRIVATE
   temporal/compact.cpp
   temporal/displacement_map.cpp
   temporal/interpolate.cpp
-  temporal/sequence.cpp)
+  temporal/sequence.cpp
+  temporal/model_c4d.cpp)

@@ -12,7 +12,7 @@
 #include <string_view>
 
 #include "contour4d/core/errors.h"
-#include "contour4d/io/model_c4d.h"
+#include "contour4d/temporal/model_c4d.h"
 
 namespace {
 

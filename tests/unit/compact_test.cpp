@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "contour4d/core/errors.h"
-#include "contour4d/io/model_c4d.h"
+#include "contour4d/temporal/model_c4d.h"
 #include "contour4d/temporal/displacement_map.h"
 #include "contour4d/temporal/sequence.h"
 #include "corpus_check.h"

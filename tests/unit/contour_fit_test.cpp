@@ -11,7 +11,7 @@
 #include "contour4d/metrics/quality.h"
 #include "contour4d/motion/contour_fit.h"
 #include "contour4d/motion/section.h"
-#include "contour4d/surface/surface_walk.h"
+#include "contour4d/metrics/surface_walk.h"
 #include "metrics_fixtures.h"
 
 namespace c4d {

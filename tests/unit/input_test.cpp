@@ -1,6 +1,6 @@
-// Tests of the input dispatch (include/contour4d/io/input.h) and of `contour4d extract` end to end:
+// Tests of the input dispatch (include/contour4d/pipeline/input.h) and of `contour4d extract` end to end:
 // exit codes per failure class, nothing written on failure.
-#include "contour4d/io/input.h"
+#include "contour4d/pipeline/input.h"
 
 #include <gtest/gtest.h>
 

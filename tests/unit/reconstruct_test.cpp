@@ -12,7 +12,7 @@
 #include <functional>
 
 #include "contour4d/core/errors.h"
-#include "contour4d/io/input.h"
+#include "contour4d/pipeline/input.h"
 #include "contour4d/surface/mesh_check.h"
 
 namespace {

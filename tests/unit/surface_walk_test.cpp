@@ -1,6 +1,6 @@
 // Closest points by walking (surface_walk.h): against a scan of every triangle, on meshes built in
 // code, for queries near the start as the remeshing and the small-angle repair make them.
-#include "contour4d/surface/surface_walk.h"
+#include "contour4d/metrics/surface_walk.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <numbers>
 #include <random>
 
-#include "contour4d/surface/surface_projector.h"
+#include "contour4d/metrics/surface_projector.h"
 
 namespace {
 

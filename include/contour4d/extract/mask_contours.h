@@ -10,7 +10,7 @@
 
 #include "contour4d/core/stack.h"
 #include "contour4d/io/images.h"
-#include "contour4d/io/input.h"
+#include "contour4d/io/input_result.h"
 
 namespace c4d {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "contour4d/core/stack.h"
-#include "contour4d/io/input.h"
+#include "contour4d/io/input_result.h"
 
 namespace c4d {
 

@@ -42,7 +42,7 @@ struct CompactOptions {
 //! Number of control vertices a fine vertex's weights refer to (CompactModel::neighbours).
 constexpr int kMaxCompactNeighbours = 16;
 
-//! A compact 4D model: plain data, the payload of model.c4d (io/model_c4d.h). Positions in the input
+//! A compact 4D model: plain data, the payload of model.c4d (temporal/model_c4d.h). Positions in the input
 //! space (mm, LPS for DICOM data).
 struct CompactModel {
   std::uint32_t vertex_count = 0;

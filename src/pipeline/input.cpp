@@ -1,5 +1,5 @@
 // One entry point for every contour input: the reader is chosen from what the path is.
-#include "contour4d/io/input.h"
+#include "contour4d/pipeline/input.h"
 
 #include <algorithm>
 #include <cctype>
@@ -138,17 +138,42 @@ void apply_frame_times(InputResult& r, const InputOptions& o) {
   r.notes.push_back(fmt::format("frame times: {:g} ms apart ({})", step, r.timing));
 }
 
-}  // namespace
 
-InputResult read_contours(const fs::path& input, const InputOptions& options) {
-  if (options.frame_ms > 0 && options.cycle_ms > 0)
-    throw InvalidInput(ErrorCode::Usage, Location{input.string()}, "give --frame-ms or --cycle-ms, not both");
-  InputResult result = read_any(input, options);
+// The note on repairs and the frame times, for every input.
+void finish_input(InputResult& result, const InputOptions& options) {
   if (!result.repairs.empty())
     result.notes.push_back(fmt::format("repaired {} contour flaw(s) instead of refusing the input (--strict refuses): "
                                        "see report.json \"repairs\"",
                                        result.repairs.size()));
   apply_frame_times(result, options);
+}
+
+void require_one_timing(const std::string& source, const InputOptions& options) {
+  if (options.frame_ms > 0 && options.cycle_ms > 0)
+    throw InvalidInput(ErrorCode::Usage, Location{source}, "give --frame-ms or --cycle-ms, not both");
+}
+
+}  // namespace
+
+InputResult read_contours(const fs::path& input, const InputOptions& options) {
+  require_one_timing(input.string(), options);
+  InputResult result = read_any(input, options);
+  finish_input(result, options);
+  return result;
+}
+
+InputResult read_contour_list(std::vector<RawContour> contours, int frame_count, const std::vector<double>& times_ms,
+                              const std::string& source, const InputOptions& options) {
+  require_one_timing(source, options);
+  InputResult result;
+  result.format = "contours-in-memory";
+  if (!options.strict) result.repairs = repair_contours(contours);
+  result.sequence = build_sequence(contours, frame_count, times_ms, source, options.stack);
+  if (!options.label.empty()) {
+    result.sequence = select_label(result.sequence, options.label);
+    result.notes.push_back("label: only \"" + options.label + "\" kept");
+  }
+  finish_input(result, options);
   return result;
 }
 

@@ -3,7 +3,7 @@
 // the original surface"), the refinement step of Lim et al. 2014, "Surface Smoothing and Refinement",
 // done from each vertex's last closest triangle instead of a tree query; the one-frame surface's
 // small-angle repair snaps its trial positions the same way.
-#include "contour4d/surface/surface_walk.h"
+#include "contour4d/metrics/surface_walk.h"
 
 #include <algorithm>
 #include <cmath>

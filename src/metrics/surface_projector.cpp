@@ -1,6 +1,6 @@
 // Closest-point queries with CGAL's AABB tree (CGAL User Manual, "3D Fast Intersection and Distance
 // Computation"), on a triangle soup kept alongside so the hit triangle's normal is known.
-#include "contour4d/surface/surface_projector.h"
+#include "contour4d/metrics/surface_projector.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "contour4d/surface/surface_walk.h"
+#include "contour4d/metrics/surface_walk.h"
 
 namespace c4d {
 namespace {

@@ -1,6 +1,7 @@
 #pragma once
-// Disjoint sets with path halving (private to the library). The smallest index of a set is its
-// root, so results never depend on the order of unions.
+//! \file union_find.h
+//! \brief Disjoint sets with path halving. The smallest index of a set is its root, so results never
+//! depend on the order of unions.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "contour4d/core/contour_repair.h"
 #include "contour4d/core/stack.h"
+#include "contour4d/io/input_result.h"
 
 namespace c4d {
 
@@ -28,20 +28,18 @@ struct InputOptions {
                                            //!< them (contour_repair.h; contour JSON and GPFile folders)
 };
 
-//! What was read, and notes for the user (which slices and frames were used or skipped, why).
-struct InputResult {
-  Sequence sequence;
-  std::string format;               //!< "contour4d-json", "gpfile", ...
-  std::vector<std::string> notes;   //!< human-readable lines for the summary
-  std::string timing;               //!< where frame times come from: "data", "--frame-ms", "--cycle-ms",
-                                    //!< "single frame" or "unknown" (frames numbered 0, 1, 2, ... ms)
-  std::vector<ContourRepair> repairs;  //!< contour flaws fixed on reading (InputOptions::strict = false)
-};
 
 //! Reads a .json contour file, a GPFile folder (a folder with GPFile_*.txt, or its parent), a
 //! Sunnybrook-style patient folder (i-contours/, o-contours/, DICOM images), or label images
 //! (NIfTI, NRRD, MetaImage: one 4D file, one file per frame, a folder or a name pattern).
 //! \throw IoError / InvalidInput with context.
 InputResult read_contours(const std::filesystem::path& input, const InputOptions& options = {});
+
+//! The same for contours given in memory (a script's arrays): repaired unless options.strict, validated
+//! by build_sequence, the label kept, frame times from `times_ms` (one per frame; empty: none of their
+//! own, then options.frame_ms or cycle_ms). `source` names them in messages. Format "contours-in-memory".
+//! \throw InvalidInput with the frame, slice and contour index of a bad contour.
+InputResult read_contour_list(std::vector<RawContour> contours, int frame_count, const std::vector<double>& times_ms,
+                              const std::string& source, const InputOptions& options = {});
 
 }  // namespace c4d

@@ -1,7 +1,7 @@
 // model.c4d: the compact 4D model on disk (docs/compact.md). Explicit little-endian fields, so the
 // file is the same on every machine; the checksum catches truncation and bit rot before decoding; the
 // payload is one zstd frame (version 3, flag bit 1), decompressed into a buffer of its declared size.
-#include "contour4d/io/model_c4d.h"
+#include "contour4d/temporal/model_c4d.h"
 
 #include <zstd.h>
 
