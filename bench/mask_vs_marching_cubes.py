@@ -107,7 +107,7 @@ def main():
     truth = os.path.join(ph, "truth")
 
     rec = os.path.join(w, "contour4d")
-    t_rec = run([args.cli, "reconstruct", mask, "-o", rec], os.path.join(w, "reconstruct.log"))
+    t_rec = run([args.cli, "reconstruct", mask, "--format", "vtp,obj", "-o", rec], os.path.join(w, "reconstruct.log"))
     mc = os.path.join(w, "marching-cubes")
     mc_sizes, t_mc = marching_cubes_frames(mask, 1, mc)
     ev_rec = evaluate(args.cli, rec, truth, os.path.join(w, "evaluate-contour4d.log"))

@@ -27,10 +27,10 @@ run_case() {
   echo "== $name"
   rm -rf "mc_$name" "rec_$name" "unpacked_$name"
   "$PY" "$TOOL" mc "$mask" "mc_$name" --label "$label" > "mc_$name.json"
-  "$C4D" reconstruct "$input" "$@" -o "rec_$name" > "rec_$name.log"
+  "$C4D" reconstruct "$input" "$@" --format vtp,obj -o "rec_$name" > "rec_$name.log"
   "$C4D" pack "rec_$name" -o "rec_$name/model.c4d" > "pack_vertex_$name.log"
   "$C4D" pack "rec_$name" --error surface -o "rec_$name/model_surface.c4d" --no-gltf > "pack_surface_$name.log"
-  "$C4D" unpack "rec_$name/model.c4d" -o "unpacked_$name" > /dev/null
+  "$C4D" unpack "rec_$name/model.c4d" --format vtp,obj -o "unpacked_$name" > /dev/null
   "$PY" "$TOOL" compare "rec_$name" "unpacked_$name" > "compare_$name.json"
   local mc_bytes tris c4d_v c4d_s glb fine
   mc_bytes=$(field "mc_$name.json" bytes)

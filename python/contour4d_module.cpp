@@ -251,7 +251,7 @@ ReconstructRunOptions run_options(py::kwargs& kw) {
 }
 
 py::dict reconstruct(const py::object& input, const std::optional<std::filesystem::path>& output,
-                     const std::optional<std::filesystem::path>& keep_failed, py::kwargs kw) {
+                     const std::optional<std::filesystem::path>& keep_failed, const std::string& format, py::kwargs kw) {
   ReconstructRunOptions options = run_options(kw);
   const InputOptions in = input_options(kw);
   options.label = in.label;
@@ -260,10 +260,11 @@ py::dict reconstruct(const py::object& input, const std::optional<std::filesyste
   ReconstructRun run;
   {
     py::gil_scoped_release release;
+    const MeshFormats formats = parse_mesh_formats(format);
     std::optional<OutputDir> out;
     if (output) out.emplace(*output);
     run = reconstruct_run(read, name, options);
-    if (out) write_run(*out, run, keep_failed ? keep_failed->string() : std::string());
+    if (out) write_run(*out, run, formats, keep_failed ? keep_failed->string() : std::string());
     else if (!run.check.ok())
       throw SolverError(ErrorCode::InvalidResult, Location{name}, "the reconstruction failed its checks: " + run.check.summary(),
                         "pass output= and keep_failed= to write the failed result for debugging");
@@ -350,7 +351,7 @@ py::dict pack(const py::object& input, const std::optional<std::filesystem::path
 }
 
 py::dict unpack(const py::object& model, const std::optional<std::filesystem::path>& output, std::size_t resample,
-                const std::string& interp) {
+                const std::string& interp, const std::string& format) {
   const bool is_bytes = py::isinstance<py::bytes>(model);
   const std::string bytes = is_bytes ? model.cast<std::string>() : std::string();
   const std::filesystem::path path = is_bytes ? std::filesystem::path("model.c4d") : model.cast<std::filesystem::path>();
@@ -361,7 +362,7 @@ py::dict unpack(const py::object& model, const std::optional<std::filesystem::pa
     seq = resample_if(compact_decode(m), resample, interp);
     if (output) {
       OutputDir out(*output);
-      write_mesh_sequence(out, seq, "unpacked from " + path.filename().string());
+      write_mesh_sequence(out, seq, "unpacked from " + path.filename().string(), parse_mesh_formats(format));
       out.commit();
     }
   }
@@ -384,7 +385,7 @@ PYBIND11_MODULE(contour4d, m) {
         "'repairs', 'notes', 'format', 'space', 'stack_normal', 'frames'}.\n"
         "Options as `contour4d reconstruct`'s: type, label, labels, slice_axis, space, frame_ms, cycle_ms, strict,\n"
         "contours ('endo', 'epi', 'both': Sunnybrook).");
-  m.def("reconstruct", &reconstruct, "input"_a, "output"_a = py::none(), "keep_failed"_a = py::none(),
+  m.def("reconstruct", &reconstruct, "input"_a, "output"_a = py::none(), "keep_failed"_a = py::none(), "format"_a = "vtp",
         "Reconstructs INPUT (a path, a list of contour dicts, or read()'s dict) as `contour4d reconstruct` does.\n"
         "Returns {'positions': (frames, vertices, 3), 'triangles': (n, 3), 'times_ms': (frames,), 'report': dict}.\n"
         "With output= the same files as the command line are written there. Options: frame, edge, cap, cap_fill,\n"
@@ -401,5 +402,6 @@ PYBIND11_MODULE(contour4d, m) {
         "Packs a reconstruction folder (or a mesh dict) into model.c4d as `contour4d pack` does; written to output=\n"
         "(default INPUT/model.c4d for a folder) with model.glb beside it. Returns the figures and the bytes.");
   m.def("unpack", &unpack, "model"_a, "output"_a = py::none(), "resample"_a = 0, "interp"_a = "catmull-rom",
+        "format"_a = "vtp",
         "Decodes a model.c4d (path or bytes) into the mesh dict; output= writes the folder as `contour4d unpack`.");
 }

@@ -44,6 +44,6 @@ echo "-- the 4D mesh against the phantom's true surface (distances in mm over ev
 echo
 echo "Results are in $out:"
 echo "  $out/bivme-lv-endo.json         contours read from the GPFiles (mm, LPS patient space)"
-[ -f "$out/bivme-lv/mesh.pvd" ] && echo "  $out/bivme-lv/mesh.pvd          the 4D mesh: one .vtp per frame (+ .obj), report.json"
+[ -f "$out/bivme-lv/mesh.pvd" ] && echo "  $out/bivme-lv/mesh.pvd          the 4D mesh: one .vtp per frame (add --format vtp,obj for .obj), report.json"
 echo "  $out/left-heart/                contours.json, the true surface (truth/mesh.pvd) and our 4D mesh (mesh/mesh.pvd)"
-echo "Look at them: open a mesh.pvd in ParaView (File > Open, then press Play), or any frames/*.obj in MeshLab/Blender."
+echo "Look at them: open a mesh.pvd in ParaView (File > Open, then press Play); reconstruct --format vtp,obj also writes frames/*.obj for MeshLab/Blender."

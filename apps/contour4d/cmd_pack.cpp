@@ -67,12 +67,14 @@ struct UnpackArgs {
   std::string output;
   std::size_t resample = 0;
   std::string interp = "catmull-rom";
+  std::string format = "vtp";
 };
 
 int run_unpack(const UnpackArgs& a) {
   const MeshSequence seq = resample_if(compact_decode(read_model_c4d(a.input)), a.resample, a.interp);
   OutputDir out(a.output);
-  write_mesh_sequence(out, seq, "unpacked from " + std::filesystem::path(a.input).filename().string());
+  write_mesh_sequence(out, seq, "unpacked from " + std::filesystem::path(a.input).filename().string(),
+                      parse_mesh_formats(a.format));
   out.commit();
   std::cout << fmt::format("unpacked {} frames ({} vertices, {} triangles) into {}\n", seq.positions.size(),
                            seq.positions[0].size(), seq.triangles.size(), a.output);
@@ -122,6 +124,8 @@ void add_unpack_command(CLI::App& root, std::vector<Command>& commands) {
   auto args = std::make_shared<UnpackArgs>();
   app->add_option("MODEL", args->input, "a model.c4d written by `contour4d pack`")->required();
   app->add_option("-o,--output", args->output, "output folder")->required();
+  app->add_option("--format", args->format, "mesh files per frame: vtp (with mesh.pvd, always) and obj, e.g. vtp,obj")
+      ->capture_default_str();
   app->add_option("--resample", args->resample, "resample to N frames (0: keep)")->default_val(0);
   app->add_option("--interp", args->interp, "interpolation for --resample")->check(CLI::IsMember({"linear", "catmull-rom", "step"}))->default_val("catmull-rom");
   commands.push_back({app, [args] { return run_unpack(*args); }});

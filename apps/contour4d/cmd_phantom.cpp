@@ -125,7 +125,7 @@ int run_phantom(const PhantomArgs& a) {
     MeshFrames frames;
     frames.meshes = ph.truth;
     for (const Frame& f : ph.contours.frames) frames.times_ms.push_back(f.time_ms);
-    write_mesh_frames(truth, frames, "contour4d phantom " + ph.name + " ground truth (mm)");
+    write_mesh_frames(truth, frames, "contour4d phantom " + ph.name + " ground truth (mm)", MeshFormats{.obj = true});
     truth.write("truth.json", truth_json(ph, po));
     truth.commit();
   }

@@ -23,6 +23,7 @@ struct ReconstructArgs {
   InputOptions in;
   ReconstructRunOptions run;
   std::string keep_failed;
+  std::string format = "vtp";
 };
 
 // The input summary: what was read, the notes of the reader and the first repairs (flushed before the work).
@@ -41,21 +42,24 @@ void print_input_summary(const ReconstructArgs& a, const InputResult& read) {
 void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, double seconds) {
   std::vector<double> volumes;
   for (std::size_t f = 0; f < result.positions.size(); ++f) volumes.push_back(signed_volume(result.frame(f)));
-  const double edv = *std::max_element(volumes.begin(), volumes.end());
-  const double esv = *std::min_element(volumes.begin(), volumes.end());
+  const auto ed = std::max_element(volumes.begin(), volumes.end());
+  const auto es = std::min_element(volumes.begin(), volumes.end());
+  const double edv = *ed, esv = *es;
   std::cout << fmt::format("  mesh: {} vertices, {} triangles, the same in all {} frames\n", result.positions.front().size(),
                            result.triangles.size(), result.positions.size());
   std::cout << "  volume per frame (ml):";
   for (double v : volumes) std::cout << fmt::format(" {:.1f}", v / 1000.0);
   std::cout << "\n";
   if (volumes.size() > 1)
-    std::cout << fmt::format("  EDV {:.1f} ml, ESV {:.1f} ml, EF {:.1f} %\n", edv / 1000, esv / 1000, 100 * (edv - esv) / edv);
+    std::cout << fmt::format("  EDV {:.1f} ml (frame {}), ESV {:.1f} ml (frame {}), EF {:.1f} %\n", edv / 1000,
+                             ed - volumes.begin(), esv / 1000, es - volumes.begin(), 100 * (edv - esv) / edv);
   std::cout << fmt::format("  done in {:.2f} s. Output: {}/mesh.pvd (open in ParaView), frames/, report.json\n", seconds,
                            a.output);
 }
 
 int run_reconstruct(ReconstructArgs a) {
   const auto t0 = std::chrono::steady_clock::now();
+  const MeshFormats formats = parse_mesh_formats(a.format);  // a bad --format stops before the work
   const InputResult read = read_contours(a.input, a.in);
   OutputDir out(a.output);  // checks the destination is writable before the work starts
   a.run.label = a.in.label;
@@ -65,7 +69,7 @@ int run_reconstruct(ReconstructArgs a) {
       read, a.input, a.run, [&bar](const char* stage, int done, int total) { bar.update(stage, done, total); },
       [](const std::string& line) { std::cout << line << "\n" << std::flush; });
   bar.finish();
-  write_run(out, run, a.keep_failed);  // the output gate: nothing is written when a frame fails its checks
+  write_run(out, run, formats, a.keep_failed);  // the output gate: nothing is written when a frame fails its checks
   print_result_summary(a, run.result, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   return 0;
 }
@@ -88,70 +92,73 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       "                                      # a myocardial wall, every frame on its own; frames 800/N ms apart\n"
       "  contour4d reconstruct contours.json --strict -o out/lv      # refuse flawed contours instead of repairing them\n"
       "INPUT is a contour JSON file, a biv-me GPFile folder, a Sunnybrook folder or label image(s). Outputs: OUTDIR/mesh.pvd (open in ParaView),\n"
-      "OUTDIR/frames/frame_NNN.{vtp,obj}, OUTDIR/report.json. Coordinates in mm, in the input's patient space.\n"
+      "OUTDIR/frames/frame_NNN.vtp (.obj with --format vtp,obj), OUTDIR/report.json (summary first: volume curve, ED/ES\n"
+      "frames, EDV/ESV/EF). Coordinates in mm, in the input's patient space (LPS for DICOM-derived inputs).\n"
       "Every frame is checked before anything is written; a frame that fails exits with code 26, naming it.");
-  app->add_option("INPUT", args->input, "contour JSON file or GPFile folder")->required();
-  app->add_option("-o,--output", args->output, "output folder (replaced atomically)")->required();
-  app->add_option("--frame", args->run.frame, "reconstruct this frame only (0-based)");
-  add_input_options(app, args->in);
+  // The options a user needs first; the rest under "Advanced" (baselines of the papers, tuning, debugging).
+  app->add_option("INPUT", args->input, "contour JSON file, GPFile folder, Sunnybrook folder or label image(s)")
+      ->required();
+  app->add_option("-o,--output", args->output, "output folder (replaced atomically when complete)")->required();
   app->add_option("--edge", args->run.edge, "target edge length in mm")->capture_default_str()->check(CLI::Range(0.05, 50.0));
   app->add_option("--cap", args->run.cap, "end caps: rounded, flat or open")
       ->capture_default_str()
       ->check(CLI::IsMember({"rounded", "flat", "open"}));
+  add_input_options(app, args->in);
+  app->add_option("--frame", args->run.frame, "reconstruct this frame only (0-based)");
+  app->add_option("--threads", args->run.threads, "worker threads (0: all cores); the output does not depend on it");
+  app->add_option("--format", args->format, "mesh files per frame: vtp (always, with mesh.pvd) and obj, e.g. vtp,obj")
+      ->capture_default_str();
+
+  const std::string advanced = "Advanced";
+  app->add_option("--method", args->run.method,
+                  "all frames: rbf-project (default: frame after frame, RBF then projection on each frame's own "
+                  "surface), carry (every frame on its own, in parallel) or rbf (the paper's RBF only, a baseline)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"carry", "rbf-project", "rbf"}))
+      ->group(advanced);
+  app->add_option("--tiling", args->run.tiling,
+                  "surface between slices: bands (default) or delaunay (Lim et al.'s projected constrained Delaunay, "
+                  "a baseline)")
+      ->check(CLI::IsMember({"bands", "delaunay"}))
+      ->capture_default_str()
+      ->group(advanced);
+  app->add_flag("--vertical-deformation", args->run.vertical,
+                "Lim et al.'s sine-shaped vertical deformation where contours split or merge between frames (eq. 10, "
+                "a baseline)")
+      ->group(advanced);
   app->add_option("--cap-fill", args->run.cap_fill,
                   "rounded caps on ends that keep their size are filled towards the trend of the last two sections, "
-                  "up to this fraction of the half-spacing prism, and walls into closing ends follow a smooth "
-                  "section-area curve (0: plain faired domes)")
+                  "up to this fraction of the half-spacing prism (0: plain faired domes)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
-  app->add_option("--method", args->run.method,
-                  "all frames: carry (every frame on its own, in parallel: frame 0's mesh onto the frame's own surface), "
-                  "rbf-project (frame after frame: RBF + projection on each frame's surface) or rbf (the paper's RBF only)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"carry", "rbf-project", "rbf"}));
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(advanced);
   app->add_option("--pin-spacing", args->run.pin_spacing,
-                  "0 (default): later frames fit their contours through each frame's own surface; > 0: also hold "
-                  "frame-0 contour vertices on later contours, at least this x the median edge apart (exact "
-                  "contour vertices, worse triangles where contours shrink)")
-      ->capture_default_str();
-  app->add_flag("--vertical-deformation", args->run.vertical,
-                "where a slice's contours split or merge between frames, first apply Lim et al.'s sine-shaped "
-                "vertical deformation centred on the ridge (eq. 10, Table 1), then match and deform");
+                  "> 0: also hold frame-0 contour vertices on later contours, at least this x the median edge apart")
+      ->capture_default_str()
+      ->group(advanced);
   app->add_flag("--biharmonic", args->run.biharmonic,
-                "frames whose contours all match the previous frame's one-to-one follow them by a biharmonic "
-                "displacement of the previous mesh (one sparse solve, no relaxation), unless that leaves the mesh over "
-                "0.2 mm from a contour, an angle below 25 deg, fewer than 85% of angles in 40-80 deg or crossing "
-                "triangles; other frames as usual. Opt-in: no faster overall (frames that fail the guard are done twice), "
-                "smaller smallest angles");
-  app->add_option("--tiling", args->run.tiling,
-                  "surface between slices: bands (default: optimal bands, bridges at branchings) or delaunay (Lim et "
-                  "al.'s constrained Delaunay of the projected slices with chordal-axis lifting points)")
-      ->check(CLI::IsMember({"bands", "delaunay"}))
-      ->capture_default_str();
+                "frames whose contours all match the previous frame's one-to-one follow them by one biharmonic "
+                "solve, unless that fails the quality guard")
+      ->group(advanced);
   app->add_option("--remesher", args->run.remesher,
-                  "isotropic remeshing of the surface: auto (default: ours with interpolated rows and for frame 0 of "
-                  "all frames, CGAL's for one frame with --no-rows), cgal (CGAL's) or fast (ours, the same algorithm "
-                  "on flat arrays: 1.3-2x faster per frame; for one frame with --no-rows slab accuracy within about 10% "
-                  "of cgal's either way and smallest angles not guaranteed)")
+                  "isotropic remeshing: auto (default), cgal (CGAL's) or fast (ours, on flat arrays)")
       ->check(CLI::IsMember({"auto", "cgal", "fast"}))
-      ->capture_default_str();
-  app->add_flag("--fast", args->run.fast,
-               "all frames: frame 0 by interpolated rows too (the default one-frame surface) instead of remeshed "
-               "bands: about 1 s less per run, but the mesh carried through the cycle is less even (left heart ES "
-               "86.6 against 95.4% of angles in 40-80 deg)");
+      ->capture_default_str()
+      ->group(advanced);
+  app->add_flag("--fast", args->run.fast, "all frames: frame 0 by interpolated rows too (faster, less even triangles)")
+      ->group(advanced);
   app->add_flag("--no-rows", args->run.no_rows,
-                "remesh every band between slices (CGAL isotropic remeshing) instead of interpolated rows one edge "
-                "apart: 1.9-3.2x slower per frame, slightly more even triangles (left heart ES 96.5 against 92.2% of "
-                "angles in 40-80 deg), as close to the true surface (ES 0.018 against 0.017 mm mean)");
-  app->add_option("--threads", args->run.threads, "worker threads (0: all cores); output does not depend on it");
+                "remesh every band between slices instead of interpolated rows (slower, slightly more even triangles)")
+      ->group(advanced);
   app->add_option("--keep-failed", args->keep_failed,
-                  "every frame is checked before writing (closed, manifold, outward, no crossing triangles, volume near "
-                  "Simpson's discs); a failing result exits with code 26 and writes nothing, or with this option writes "
-                  "it to this folder marked FAILED, for debugging");
+                  "a result that fails its checks exits with code 26 and writes nothing; this writes it to DIR, "
+                  "marked FAILED, for debugging")
+      ->group(advanced);
   app->add_option("--volume-tolerance", args->run.volume_tolerance,
                   "output check: largest accepted |mesh volume / Simpson's discs volume - 1| per frame")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(CLI::Range(0.0, 10.0))
+      ->group(advanced);
   commands.push_back({app, [args] { return run_reconstruct(*args); }});
 }
 

@@ -65,7 +65,7 @@ def test_reconstruct_writes_what_the_cli_writes(phantoms, cli, tmp_path):
     np.testing.assert_array_equal(res["positions"], loaded["positions"])  # VTP holds Float64: exact
     np.testing.assert_array_equal(res["triangles"], loaded["triangles"])
     assert res["report"] == json.loads((tmp_path / "cli" / "report.json").read_text())
-    assert res["report"]["checks"]["ok"] and res["report"]["ef_percent"] > 0
+    assert res["report"]["checks"]["ok"] and res["report"]["summary"]["ef_percent"] > 0
 
 
 def test_reconstruct_one_frame_matches_vtk_reader(phantoms, tmp_path):
@@ -214,4 +214,4 @@ def test_real_data_sunnybrook(data_dir):
     res = contour4d.reconstruct(data_dir / "sunnybrook-SC-HF-I-1", threads=2)
     assert res["positions"].shape[0] == 2 and res["report"]["checks"]["ok"]
     assert res["report"]["frame_times"]["source"] == "data"
-    assert 0 < res["report"]["ef_percent"] < 100
+    assert 0 < res["report"]["summary"]["ef_percent"] < 100

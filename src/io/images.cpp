@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <string_view>
 #include <sstream>
 #include <limits>
 #include <mutex>
@@ -262,6 +263,22 @@ std::vector<fs::path> list_label_images(const fs::path& input) {
   return files;
 }
 
+// What a file is by its first bytes, when it is a common format that is no label image ("" otherwise).
+std::string other_format(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(132, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  auto starts = [&head](std::string_view sig) { return head.compare(0, sig.size(), sig) == 0; };
+  if (starts("\x89PNG")) return "a PNG image";
+  if (starts("\xFF\xD8\xFF")) return "a JPEG image";
+  if (starts("II*") || starts("MM")) return head.size() >= 4 && (head[2] == '*' || head[3] == '*') ? "a TIFF image" : "";
+  if (starts("%PDF")) return "a PDF document";
+  if (starts("PK\x03\x04")) return "a ZIP archive";
+  if (head.size() >= 132 && head.compare(128, 4, "DICM") == 0) return "a DICOM file";
+  return {};
+}
+
 std::vector<LabelVolume> read_label_image(const fs::path& file) {
   register_factories();
   std::error_code ec;
@@ -275,6 +292,10 @@ std::vector<LabelVolume> read_label_image(const fs::path& file) {
   itk::ImageIOBase::Pointer io =
       itk::ImageIOFactory::CreateImageIO(file.string().c_str(), itk::IOFileModeEnum::ReadMode);
   if (io.IsNull()) {
+    if (const std::string what = other_format(file); !what.empty())
+      throw InvalidInput(ErrorCode::Format, at_file(file), "this is " + what + ", not a NIfTI, NRRD or MetaImage label image",
+                         "give the label image itself (.nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd); DICOM image folders "
+                         "are read with their contours (Sunnybrook layout)");
     // A known extension whose header ITK cannot even recognise: truncated or corrupt.
     if (is_label_image_file(file))
       throw IoError(ErrorCode::Parse, at_file(file), "cannot read the image header",

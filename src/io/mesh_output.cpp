@@ -11,24 +11,42 @@
 namespace c4d {
 namespace fs = std::filesystem;
 
-void write_mesh_frames(const OutputDir& out, const MeshFrames& frames, const std::string& comment) {
+MeshFormats parse_mesh_formats(const std::string& list) {
+  MeshFormats formats;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t end = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, end - start);
+    if (name == "obj") formats.obj = true;
+    else if (name != "vtp" && name != "pvd")
+      throw InvalidInput(ErrorCode::Usage, Location{}, "unknown mesh format \"" + name + "\"",
+                         "--format takes a comma-separated list of vtp (always written, with mesh.pvd) and obj");
+    start = end + 1;
+  }
+  return formats;
+}
+
+void write_mesh_frames(const OutputDir& out, const MeshFrames& frames, const std::string& comment,
+                       const MeshFormats& formats) {
   std::vector<PvdEntry> entries;
   for (std::size_t f = 0; f < frames.meshes.size(); ++f) {
     const std::string stem = fmt::format("frames/frame_{:03d}", f);
     const double t = f < frames.times_ms.size() ? frames.times_ms[f] : static_cast<double>(f);
     out.write(stem + ".vtp", format_vtp(frames.meshes[f]));
-    out.write(stem + ".obj", format_obj(frames.meshes[f], comment.empty() ? fmt::format("frame {}, t = {} ms", f, t)
+    if (formats.obj)
+      out.write(stem + ".obj", format_obj(frames.meshes[f], comment.empty() ? fmt::format("frame {}, t = {} ms", f, t)
                                                                           : fmt::format("{}; frame {}, t = {} ms", comment, f, t)));
     entries.push_back({t, stem + ".vtp"});
   }
   out.write("mesh.pvd", format_pvd(entries));
 }
 
-void write_mesh_sequence(const OutputDir& out, const MeshSequence& seq, const std::string& comment) {
+void write_mesh_sequence(const OutputDir& out, const MeshSequence& seq, const std::string& comment,
+                         const MeshFormats& formats) {
   MeshFrames frames;
   frames.times_ms = seq.times_ms;
   for (std::size_t f = 0; f < seq.positions.size(); ++f) frames.meshes.push_back(seq.frame(f));
-  write_mesh_frames(out, frames, comment);
+  write_mesh_frames(out, frames, comment, formats);
 }
 
 MeshFrames read_mesh_frames(const fs::path& dir) {

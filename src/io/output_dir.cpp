@@ -2,6 +2,10 @@
 
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
+#include <csignal>
+#include <cstring>
 #include <fstream>
 #include <system_error>
 
@@ -16,7 +20,44 @@ namespace {
                 "Choose an output folder you can write to (check the path and its permissions)");
 }
 std::string tmp_suffix() { return ".tmp-" + std::to_string(static_cast<long>(::getpid())); }
+
+// The live staging folders, in fixed storage a signal handler can read without locking.
+constexpr std::size_t kStageSlots = 16;
+constexpr std::size_t kStagePathBytes = 4096;
+std::array<std::atomic<bool>, kStageSlots> g_stage_used{};
+std::array<std::array<char, kStagePathBytes>, kStageSlots> g_stage_path{};
+
+int claim_stage_slot(const fs::path& stage) {
+  const std::string s = fs::absolute(stage).string();
+  if (s.size() >= kStagePathBytes) return -1;
+  for (std::size_t i = 0; i < kStageSlots; ++i) {
+    bool expected = false;
+    if (!g_stage_used[i].compare_exchange_strong(expected, true)) continue;
+    std::memcpy(g_stage_path[i].data(), s.c_str(), s.size() + 1);
+    return static_cast<int>(i);
+  }
+  return -1;  // more live stages than slots: that one is not removed on a signal
+}
+
+void release_stage_slot(int slot) {
+  if (slot >= 0) g_stage_used[static_cast<std::size_t>(slot)].store(false);
+}
+
+extern "C" void remove_stages_and_reraise(int sig) {
+  for (std::size_t i = 0; i < kStageSlots; ++i) {
+    if (!g_stage_used[i].load()) continue;
+    std::error_code ec;
+    fs::remove_all(fs::path(g_stage_path[i].data()), ec);
+  }
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
 }  // namespace
+
+void remove_stages_on_interrupt() {
+  std::signal(SIGINT, remove_stages_and_reraise);
+  std::signal(SIGTERM, remove_stages_and_reraise);
+}
 
 void write_file_atomic(const fs::path& path, std::string_view content) {
   std::error_code ec;
@@ -71,10 +112,12 @@ OutputDir::OutputDir(fs::path destination) : destination_(std::move(destination)
   fs::remove_all(stage_, ec);
   fs::create_directory(stage_, ec);
   if (ec || !fs::is_directory(stage_)) fail_output(destination_, "cannot create a staging folder beside it");
+  slot_ = claim_stage_slot(stage_);
   // Probe writability now, before any work is done.
   const fs::path probe = stage_ / ".probe";
   std::ofstream(probe).put('x');
   if (!fs::exists(probe, ec)) {
+    release_stage_slot(slot_);
     fs::remove_all(stage_, ec);
     fail_output(destination_, "folder is not writable");
   }
@@ -82,6 +125,7 @@ OutputDir::OutputDir(fs::path destination) : destination_(std::move(destination)
 }
 
 OutputDir::~OutputDir() {
+  release_stage_slot(slot_);
   if (!committed_) {
     std::error_code ec;
     fs::remove_all(stage_, ec);
@@ -115,6 +159,8 @@ void OutputDir::commit() {
     fail_output(destination_, "cannot move the finished output into place: " + ec.message());
   }
   committed_ = true;
+  release_stage_slot(slot_);
+  slot_ = -1;
   if (had_old) fs::remove_all(old, ec);
 }
 

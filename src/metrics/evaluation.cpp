@@ -280,18 +280,18 @@ std::string format_evaluation_table(const Evaluation& ev) {
     any_simpson |= fe.simpson.has_value();
   }
   out += fmt::format("{:>5} {:>9} {:>8} {:>8} {:>6} {:>6} {:>5} {:>6} {:>6} {:>6} {:>12}", "frame", "time ms", "vertices",
-                     "tris", "faults", "closed", "genus", "SI", "40-80%", "min°", "volume mm³");
-  if (any_simpson) out += fmt::format(" {:>12}", "simpson mm³");
+                     "tris", "faults", "closed", "genus", "SI", "40-80%", "min°", "volume ml");
+  if (any_simpson) out += fmt::format(" {:>12}", "simpson ml");
   if (any_conf) out += fmt::format(" {:>9} {:>9}", "conf mean", "conf max");
   if (any_acc) out += fmt::format(" {:>9} {:>9} {:>9} {:>9}", "acc mean", "acc max", "acc rms", "hausdorff");
   out += "\n";
   for (const FrameEvaluation& fe : ev.frames) {
     const TopologyReport& t = fe.topology;
-    out += fmt::format("{:>5} {:>9.1f} {:>8} {:>8} {:>6} {:>6} {:>5} {:>6} {:>6.2f} {:>6.2f} {:>12.1f}", fe.frame, fe.time_ms,
+    out += fmt::format("{:>5} {:>9.1f} {:>8} {:>8} {:>6} {:>6} {:>5} {:>6} {:>6.2f} {:>6.2f} {:>12.2f}", fe.frame, fe.time_ms,
                        t.vertices, t.triangles, t.faults.size(), t.closed() ? "yes" : "no", t.genus < 0 ? std::string("-") : std::to_string(t.genus),
                        t.self_intersections_checked ? std::to_string(t.self_intersections) : std::string("-"),
-                       fe.quality.pct_40_80, fe.quality.min_angle_deg, fe.volume);
-    if (any_simpson) out += fmt::format(" {:>12}", fe.simpson ? fmt::format("{:.1f}", fe.simpson->volume) : "-");
+                       fe.quality.pct_40_80, fe.quality.min_angle_deg, fe.volume / 1000.0);
+    if (any_simpson) out += fmt::format(" {:>12}", fe.simpson ? fmt::format("{:.2f}", fe.simpson->volume / 1000.0) : "-");
     if (any_conf)
       out += fmt::format(" {:>9} {:>9}", fe.conformity ? mm(fe.conformity->mean) : "-", fe.conformity ? mm(fe.conformity->max) : "-");
     if (any_acc) {
@@ -304,7 +304,7 @@ std::string format_evaluation_table(const Evaluation& ev) {
     }
     out += "\n";
   }
-  out += "\nsummary (mm, mm³, degrees, %)\n";
+  out += "\nsummary (mm, ml, degrees, %)\n";
   std::vector<double> means;
   for (const FrameEvaluation& fe : ev.frames)
     if (fe.conformity) means.push_back(fe.conformity->mean);
@@ -322,12 +322,13 @@ std::string format_evaluation_table(const Evaluation& ev) {
                          f, q.pct_40_50, q.pct_50_60, q.pct_60_70, q.pct_70_80, q.pct_40_80, q.bad_triangles, q.bad_pct);
     }
   }
-  out += fmt::format("  mesh volume: EDV {:.1f} mm³ (frame {}), ESV {:.1f} mm³ (frame {}), EF {:.1f} %\n", ev.mesh_ef.edv,
-                     ev.mesh_ef.ed_frame, ev.mesh_ef.esv, ev.mesh_ef.es_frame, ev.mesh_ef.ef_pct);
+  out += fmt::format("  mesh volume: EDV {:.2f} ml (frame {}), ESV {:.2f} ml (frame {}), EF {:.1f} %\n",
+                     ev.mesh_ef.edv / 1000.0, ev.mesh_ef.ed_frame, ev.mesh_ef.esv / 1000.0, ev.mesh_ef.es_frame,
+                     ev.mesh_ef.ef_pct);
   if (ev.simpson_ef)
-    out += fmt::format("  Simpson discs: EDV {:.1f} mm³ (frame {}), ESV {:.1f} mm³ (frame {}), EF {:.1f} %\n",
-                       ev.simpson_ef->edv, ev.simpson_ef->ed_frame, ev.simpson_ef->esv, ev.simpson_ef->es_frame,
-                       ev.simpson_ef->ef_pct);
+    out += fmt::format("  Simpson discs: EDV {:.2f} ml (frame {}), ESV {:.2f} ml (frame {}), EF {:.1f} %\n",
+                       ev.simpson_ef->edv / 1000.0, ev.simpson_ef->ed_frame, ev.simpson_ef->esv / 1000.0,
+                       ev.simpson_ef->es_frame, ev.simpson_ef->ef_pct);
   const CorrespondenceReport& c = ev.correspondence;
   out += fmt::format("  vertex correspondence: {}\n", c.ok() ? "yes" : "no");
   out += ev.faults.empty() ? std::string("no faults\n") : fmt::format("{} faults:\n", ev.faults.size());

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <fstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -31,6 +33,20 @@ bool has_gpfiles(const fs::path& dir) {
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string n = e.path().filename().string();
     if (n.rfind("GPFile_", 0) == 0 && n.size() > 11 && n.compare(n.size() - 4, 4, ".txt") == 0) return true;
+  }
+  return false;
+}
+
+// Whether a folder holds DICOM files (the "DICM" mark at byte 128), looking at its first files only.
+bool has_dicom_files(const fs::path& dir) {
+  std::error_code ec;
+  int looked = 0;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (!e.is_regular_file(ec)) continue;
+    if (++looked > 64) break;
+    std::ifstream in(e.path(), std::ios::binary);
+    char head[132] = {};
+    if (in.read(head, sizeof head) && std::string_view(head + 128, 4) == "DICM") return true;
   }
   return false;
 }
@@ -76,6 +92,11 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
   } else if (fs::is_directory(input, ec)) {
     fs::path dir = input;
     if (!has_gpfiles(dir) && has_gpfiles(dir / "guidepoints")) dir = dir / "guidepoints";
+    if (!has_gpfiles(dir) && has_dicom_files(input))
+      throw IoError(ErrorCode::Format, where,
+                    "folder holds DICOM images but no contours: contour4d reads contours drawn on them (a Sunnybrook-style "
+                    "folder with i-contours/ and o-contours/ beside the images) or label images, not the images alone",
+                    kSupported);
     if (!has_gpfiles(dir))
       throw IoError(ErrorCode::Format, where, "folder holds no GPFile_*.txt files", kSupported);
     GpFileOptions gp;

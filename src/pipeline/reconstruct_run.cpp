@@ -3,6 +3,7 @@
 #include "contour4d/pipeline/reconstruct_run.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include <fmt/format.h>
@@ -15,8 +16,11 @@
 namespace c4d {
 namespace {
 
-nlohmann::json connections_json(const std::vector<Connection>& cs) {
-  nlohmann::json a = nlohmann::json::array();
+// report.json keeps its keys in the order written: the summary first, per-frame details after.
+using Json = nlohmann::ordered_json;
+
+Json connections_json(const std::vector<Connection>& cs) {
+  Json a = Json::array();
   for (const Connection& c : cs)
     a.push_back({{"frame_a", c.frame_a}, {"slice_a", c.slice_a}, {"contour_a", c.contour_a}, {"frame_b", c.frame_b},
                  {"slice_b", c.slice_b}, {"contour_b", c.contour_b}, {"similarity", c.similarity},
@@ -24,23 +28,23 @@ nlohmann::json connections_json(const std::vector<Connection>& cs) {
   return a;
 }
 
-nlohmann::json repairs_json(const std::vector<ContourRepair>& repairs) {
-  nlohmann::json a = nlohmann::json::array();
+Json repairs_json(const std::vector<ContourRepair>& repairs) {
+  Json a = Json::array();
   for (const ContourRepair& r : repairs)
     a.push_back({{"frame", r.frame}, {"slice", r.slice}, {"contour", r.contour}, {"kind", r.kind}, {"detail", r.detail},
                  {"moved_mm", r.moved_mm}});
   return a;
 }
 
-nlohmann::json surface_json(const SurfaceReport& r) {
+Json surface_json(const SurfaceReport& r) {
   return {{"contours", r.contours},   {"caps", r.caps},         {"branchings", r.branchings},
           {"vertices", r.vertices},   {"triangles", r.triangles}, {"closed", r.closed},
-          {"self_intersects", r.self_intersections_checked ? nlohmann::json(r.self_intersects) : nlohmann::json()}, {"euler", r.euler}, {"components", r.components},
+          {"self_intersects", r.self_intersections_checked ? Json(r.self_intersects) : Json()}, {"euler", r.euler}, {"components", r.components},
           {"volume_mm3", r.volume},   {"warnings", r.warnings},  {"connections", connections_json(r.connections)}};
 }
 
-nlohmann::json checks_json(const ResultCheck& check) {
-  nlohmann::json a = nlohmann::json::array();
+Json checks_json(const ResultCheck& check) {
+  Json a = Json::array();
   for (const FrameCheck& c : check.frames)
     a.push_back({{"frame", c.frame}, {"ok", c.ok()}, {"volume_mm3", c.volume}, {"simpson_volume_mm3", c.simpson_volume},
                  {"crossing_triangle_pairs", c.self_intersections}, {"faults", c.faults}});
@@ -71,7 +75,7 @@ Reconstruct4DOptions library_options(const ReconstructRunOptions& a, const std::
   return opt;
 }
 
-nlohmann::json start_report(const InputResult& read, const std::string& input, const ReconstructRunOptions& a,
+Json start_report(const InputResult& read, const std::string& input, const ReconstructRunOptions& a,
                             const Reconstruct4DOptions& opt) {
   return {
       {"tool", "contour4d 0.1.0"},
@@ -88,6 +92,30 @@ nlohmann::json start_report(const InputResult& read, const std::string& input, c
         {"vertical_deformation", a.vertical},
         {"biharmonic", a.biharmonic}}},
   };
+}
+
+// The median distance between neighbouring slice planes of frame 0 (mm); 0 for a single slice.
+double median_slice_gap(const Sequence& seq) {
+  std::vector<double> gaps;
+  const std::vector<Slice>& slices = seq.frames.front().slices;
+  for (std::size_t k = 1; k < slices.size(); ++k) gaps.push_back(slices[k].offset - slices[k - 1].offset);
+  if (gaps.empty()) return 0.0;
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
+  return gaps[gaps.size() / 2];
+}
+
+// An edge length out of proportion to the slice spacing: coarser than half the gap leaves less than two rows
+// of triangles between slices; finer than a hundredth of it makes a mesh far larger than the data supports.
+std::string edge_warning(const Sequence& seq, double edge) {
+  const double gap = seq.frames.empty() ? 0.0 : median_slice_gap(seq);
+  if (gap <= 0.0) return {};
+  if (edge > 0.5 * gap)
+    return fmt::format("--edge {:g} mm is coarse for slices {:.1f} mm apart: less than two rows of triangles between "
+                       "slices (try --edge {:.1f} or less)", edge, gap, 0.25 * gap);
+  if (edge < 0.01 * gap)
+    return fmt::format("--edge {:g} mm is fine for slices {:.1f} mm apart: a very large mesh, slow to make (try --edge "
+                       "{:.1f})", edge, gap, std::max(0.1 * gap, 0.5));
+  return {};
 }
 
 // The contours each output frame was built from (one structure; one frame: that frame only), for the
@@ -111,7 +139,7 @@ ResultCheck run_checks(const ReconstructRunOptions& a, const Sequence& seq, cons
 }
 
 void one_frame(const ReconstructRunOptions& a, const Sequence& seq, const Reconstruct4DOptions& opt, ReconstructRun& run,
-               nlohmann::json& report) {
+               Json& report) {
   if (a.frame >= static_cast<int>(seq.frames.size()))
     throw InvalidInput(ErrorCode::Usage, Location{run.input},
                        fmt::format("--frame {} is out of range: the input has {} frames", a.frame, seq.frames.size()));
@@ -127,7 +155,7 @@ void one_frame(const ReconstructRunOptions& a, const Sequence& seq, const Recons
 // walls). Every frame is then carried from frame 0 on its own, and that result replaces the morph's if it
 // passes the checks.
 void carry_instead(const ReconstructRunOptions& a, const Sequence& seq, const Reconstruct4DOptions& opt, bool closed,
-                   ReconstructRun& run, Reconstruct4DReport& rr, nlohmann::json& report, const RunMessage& say) {
+                   ReconstructRun& run, Reconstruct4DReport& rr, Json& report, const RunMessage& say) {
   if (say)
     say(fmt::format("  the frame-after-frame morph failed its checks ({}); carrying every frame from frame 0 instead",
                     run.check.summary()));
@@ -144,8 +172,8 @@ void carry_instead(const ReconstructRunOptions& a, const Sequence& seq, const Re
   report["options"]["method"] = "carry";
 }
 
-nlohmann::json frames_json(const MeshSequence& result, const Reconstruct4DReport& rr) {
-  nlohmann::json frames = nlohmann::json::array();
+Json frames_json(const MeshSequence& result, const Reconstruct4DReport& rr) {
+  Json frames = Json::array();
   for (std::size_t f = 0; f < result.positions.size(); ++f) {
     const MorphFrameReport& mf = rr.morph.frames[f];
     frames.push_back({{"frame", f},
@@ -165,18 +193,18 @@ nlohmann::json frames_json(const MeshSequence& result, const Reconstruct4DReport
                       {"intersecting_pairs_after_untangling", mf.intersecting_pairs},
                       {"projection_mean_mm", mf.projection_mean},
                       {"projection_max_mm", mf.projection_max},
-                      {"surface", mf.biharmonic ? nlohmann::json() : surface_json(rr.surfaces[f])}});
+                      {"surface", mf.biharmonic ? Json() : surface_json(rr.surfaces[f])}});
   }
   return frames;
 }
 
 // Topology events and sub-mesh lifetimes (Miara et al. Fig. 14), in the report and for the user.
-void describe_topology(const Reconstruct4DReport& rr, nlohmann::json& report, const RunMessage& say) {
-  nlohmann::json events = nlohmann::json::array();
+void describe_topology(const Reconstruct4DReport& rr, Json& report, const RunMessage& say) {
+  Json events = Json::array();
   for (const SliceEvent& e : rr.morph.events)
     events.push_back({{"frame", e.frame}, {"slice", e.slice}, {"kind", e.kind}, {"before", e.before}, {"after", e.after}});
   report["topology_events"] = events;
-  nlohmann::json subs = nlohmann::json::array();
+  Json subs = Json::array();
   for (const SubMeshLifetime& s : rr.morph.submeshes)
     subs.push_back({{"slice_below", s.slice_below}, {"slice_above", s.slice_above}, {"first_frame", s.first_frame},
                     {"last_frame", s.last_frame}, {"contours_below", s.contours_below},
@@ -191,7 +219,7 @@ void describe_topology(const Reconstruct4DReport& rr, nlohmann::json& report, co
 }
 
 void all_frames(const ReconstructRunOptions& a, const Sequence& seq, const Reconstruct4DOptions& opt, bool closed,
-                ReconstructRun& run, nlohmann::json& report, const RunMessage& say) {
+                ReconstructRun& run, Json& report, const RunMessage& say) {
   Reconstruct4DReport rr;
   run.result = reconstruct_4d(seq, opt, &rr);
   run.check = run_checks(a, seq, opt.surface.label, closed, run.result);
@@ -200,18 +228,49 @@ void all_frames(const ReconstructRunOptions& a, const Sequence& seq, const Recon
   describe_topology(rr, report, say);
 }
 
-// The volumes and EDV/ESV/EF of a valid result.
-void add_volumes(const MeshSequence& result, nlohmann::json& report) {
-  std::vector<double> volumes;
-  for (std::size_t f = 0; f < result.positions.size(); ++f) volumes.push_back(signed_volume(result.frame(f)));
-  const double edv = *std::max_element(volumes.begin(), volumes.end());
-  const double esv = *std::min_element(volumes.begin(), volumes.end());
-  report["correspondence"] = true;
-  report["vertices"] = result.positions.front().size();
-  report["triangles"] = result.triangles.size();
-  report["edv_ml"] = edv / 1000.0;
-  report["esv_ml"] = esv / 1000.0;
-  report["ef_percent"] = edv > 0 ? 100.0 * (edv - esv) / edv : 0.0;
+// What a person or a script reads first: the structure, the frames and their times, the volume curve with
+// its end-diastolic (largest) and end-systolic (smallest) frames, EDV/ESV/EF, the mesh and whether it passed.
+Json summary_json(const ReconstructRun& run, const InputResult& read, const ReconstructRunOptions& a,
+                  const Json& report) {
+  const MeshSequence& result = run.result;
+  std::vector<double> volumes_ml;
+  for (std::size_t f = 0; f < result.positions.size(); ++f) volumes_ml.push_back(signed_volume(result.frame(f)) / 1000.0);
+  const auto ed = std::max_element(volumes_ml.begin(), volumes_ml.end());
+  const auto es = std::min_element(volumes_ml.begin(), volumes_ml.end());
+  const int first = a.frame >= 0 ? a.frame : 0;
+  Json s;
+  s["input"] = run.input;
+  s["structure"] = a.label;
+  s["frames"] = result.positions.size();
+  s["frame_times_ms"] = result.times_ms;
+  s["frame_times_source"] = read.timing;
+  s["volume_ml"] = volumes_ml;
+  s["ed_frame"] = first + static_cast<int>(ed - volumes_ml.begin());
+  s["es_frame"] = first + static_cast<int>(es - volumes_ml.begin());
+  s["edv_ml"] = *ed;
+  s["esv_ml"] = *es;
+  s["ef_percent"] = *ed > 0 ? 100.0 * (*ed - *es) / *ed : 0.0;
+  s["vertices"] = result.positions.front().size();
+  s["triangles"] = result.triangles.size();
+  s["correspondence"] = true;  // one triangle list for every frame, by construction
+  s["checks_ok"] = run.check.ok();
+  s["method"] = report["options"]["method"];
+  s["repairs"] = read.repairs.size();
+  s["units"] = "mm";
+  s["space"] = read.sequence.space;
+  return s;
+}
+
+// Floats rounded to what they mean: lengths to 0.1 µm, volumes to 0.0001 mm³ or ml, angles and percentages
+// to 0.0001 (no 17-digit noise).
+void round_floats(Json& j) {
+  if (j.is_number_float()) {
+    const double v = j.get<double>();
+    const double r = std::isfinite(v) ? std::round(v * 1e4) / 1e4 : v;
+    j = r == 0.0 ? 0.0 : r;  // no -0
+  } else if (j.is_structured()) {
+    for (Json& e : j) round_floats(e);
+  }
 }
 
 }  // namespace
@@ -226,7 +285,11 @@ ReconstructRun reconstruct_run(const InputResult& read, const std::string& input
   opt.progress = progress;
   ReconstructRun run;
   run.input = input_name;
-  nlohmann::json report = start_report(read, input_name, a, opt);
+  Json report = start_report(read, input_name, a, opt);
+  if (const std::string w = edge_warning(seq, a.edge); !w.empty()) {
+    report["warnings"] = {w};
+    if (say) say("  warning: " + w);
+  }
   const bool closed = opt.surface.caps != CapStyle::Open;
   if (a.frame >= 0) {
     one_frame(a, seq, opt, run, report);
@@ -235,20 +298,23 @@ ReconstructRun reconstruct_run(const InputResult& read, const std::string& input
     all_frames(a, seq, opt, closed, run, report, say);
   }
   report["checks"] = {{"ok", run.check.ok()}, {"volume_tolerance", a.volume_tolerance}, {"frames", checks_json(run.check)}};
-  if (run.check.ok()) add_volumes(run.result, report);
+  Json whole;
+  whole["summary"] = summary_json(run, read, a, report);
+  whole.update(report);
+  round_floats(whole);
   // No run time in the report: the same input must give byte-identical outputs.
-  run.report = report.dump(2) + "\n";
+  run.report = whole.dump(2) + "\n";
   return run;
 }
 
-void write_run(OutputDir& out, const ReconstructRun& run, const std::string& keep_failed) {
+void write_run(OutputDir& out, const ReconstructRun& run, const MeshFormats& formats, const std::string& keep_failed) {
   if (!run.check.ok()) {
     std::string hint = fmt::format("nothing was written to {}", out.destination().string());
     if (!keep_failed.empty()) {
       OutputDir failed(keep_failed);
-      nlohmann::json report = nlohmann::json::parse(run.report);
+      Json report = Json::parse(run.report);
       report["FAILED"] = run.check.summary();
-      write_mesh_sequence(failed, run.result, fmt::format("FAILED contour4d reconstruct {}", run.input));
+      write_mesh_sequence(failed, run.result, fmt::format("FAILED contour4d reconstruct {}", run.input), formats);
       failed.write("report.json", report.dump(2) + "\n");
       failed.write("FAILED.txt", "This result FAILED its checks and is kept only for debugging:\n" + run.check.summary() + "\n");
       failed.commit();
@@ -259,7 +325,7 @@ void write_run(OutputDir& out, const ReconstructRun& run, const std::string& kee
     throw SolverError(ErrorCode::InvalidResult, Location{run.input},
                       "the reconstruction failed its checks: " + run.check.summary(), hint);
   }
-  write_mesh_sequence(out, run.result, fmt::format("contour4d reconstruct {}", run.input));
+  write_mesh_sequence(out, run.result, fmt::format("contour4d reconstruct {}", run.input), formats);
   out.write("report.json", run.report);
   out.commit();
 }

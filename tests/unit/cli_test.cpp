@@ -2,12 +2,14 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <fstream>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -89,6 +91,61 @@ TEST(Cli, FailedCheckWritesNothingAndHasItsOwnExitCode) {
   const Result ok = run("reconstruct " + in + " --frame 1 -o " + dir + "/out");
   EXPECT_EQ(ok.code, 0) << ok.out;
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/report.json"));
+}
+
+// The front door: report.json opens with a summary (volume curve, ED/ES frames, EDV/ESV/EF); VTP + PVD by
+// default, OBJ on request; a bad --format stops before the work; an edge out of proportion to the slices is
+// warned about; --help puts the options a user needs first.
+TEST(Cli, SummaryFirstFormatsAndWarnings) {
+  const std::string dir = ::testing::TempDir() + "c4d-cli-front";
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(run("phantom left-heart -o " + dir + "/ph").code, 0);
+  const std::string in = dir + "/ph/contours.json";
+  const Result r = run("reconstruct " + in + " -o " + dir + "/out");
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream f(dir + "/out/report.json");
+  const nlohmann::ordered_json report = nlohmann::ordered_json::parse(f);
+  ASSERT_EQ(report.begin().key(), "summary");
+  const auto& s = report["summary"];
+  ASSERT_EQ(s["volume_ml"].size(), 3u);
+  EXPECT_EQ(s["frame_times_ms"].size(), 3u);
+  const int ed = s["ed_frame"].get<int>(), es = s["es_frame"].get<int>();
+  EXPECT_DOUBLE_EQ(s["edv_ml"].get<double>(), s["volume_ml"][static_cast<std::size_t>(ed)].get<double>());
+  EXPECT_DOUBLE_EQ(s["esv_ml"].get<double>(), s["volume_ml"][static_cast<std::size_t>(es)].get<double>());
+  EXPECT_GT(s["ef_percent"].get<double>(), 0.0);
+  EXPECT_TRUE(s["checks_ok"].get<bool>());
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/frames/frame_000.vtp"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out/frames/frame_000.obj"));
+  ASSERT_EQ(run("reconstruct " + in + " --frame 0 --format vtp,obj -o " + dir + "/obj").code, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/obj/frames/frame_000.obj"));
+  const Result bad = run("reconstruct " + in + " --format stl -o " + dir + "/bad");
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("unknown mesh format"), std::string::npos) << bad.out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/bad"));
+  const Result coarse = run("reconstruct " + in + " --frame 0 --edge 4 -o " + dir + "/coarse");
+  EXPECT_NE(coarse.out.find("is coarse for slices 5.0 mm apart"), std::string::npos) << coarse.out;
+  const Result help = run("reconstruct --help");
+  const std::size_t edge = help.out.find("--edge"), advanced = help.out.find("Advanced:");
+  ASSERT_NE(advanced, std::string::npos) << help.out;
+  EXPECT_LT(edge, advanced) << help.out;
+  EXPECT_GT(help.out.find("--pin-spacing"), advanced) << help.out;
+  std::filesystem::remove_all(dir);
+}
+
+// Ctrl-C (SIGINT) in the middle of a run leaves no hidden staging folder beside the output.
+TEST(Cli, InterruptLeavesNoStagingFolder) {
+  const std::string dir = ::testing::TempDir() + "c4d-cli-sigint";
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(run("phantom left-heart-cycle -o " + dir + "/ph").code, 0);
+  const std::string cmd = "timeout -s INT 2 " + std::string(C4D_CLI) + " reconstruct " + dir +
+                          "/ph/contours.json --threads 1 -o " + dir + "/out >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 124) << "the run ended before the interrupt: make it longer";
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    EXPECT_NE(e.path().filename().string().front(), '.') << e.path();
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -494,6 +494,16 @@ TEST(LabelImagesBadInput, EachFailureHasItsOwnCode) {
     EXPECT_EQ(c, ErrorCode::Parse) << "kept " << keep << " of " << bytes.size() << " bytes";
   }
 
+  // A PNG renamed .nii: named for what it is.
+  std::ofstream(dir / "photo.nii", std::ios::binary) << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16) << std::string(200, 'x');
+  try {
+    read_label_series(dir / "photo.nii");
+    ADD_FAILURE() << "a PNG read as a label image";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Format);
+    EXPECT_NE(std::string(e.what()).find("this is a PNG image, not a NIfTI"), std::string::npos) << e.what();
+  }
+
   // A printf-style data file pattern, which crashes ITK's MetaIO (found by fuzz_images).
   EXPECT_EQ(code_of([&] { read_label_series(fs::path(C4D_CORPUS_DIR) / "images-bad" / "bad_13_printf_pattern.mha"); }),
             ErrorCode::Format);

@@ -59,6 +59,15 @@ TEST(Input, Errors) {
   std::ofstream(d / "contours.csv") << "1,2,3\n";
   EXPECT_EQ(code_of(d / "contours.csv"), ErrorCode::Format);
   fs::remove_all(d);
+  // A folder of DICOM images without contours is told so, not "no GPFile".
+  const fs::path images = fs::path(C4D_DATA_DIR) / "sunnybrook-SC-HF-I-1" / "dicoms_contoured";
+  try {
+    read_contours(images);
+    ADD_FAILURE() << "a DICOM image folder read as contours";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Format);
+    EXPECT_NE(std::string(e.what()).find("DICOM images but no contours"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Input, LabelSelection) {

@@ -79,7 +79,7 @@ TEST(MeshOutput, WritesCollectionAndReadsItBack) {
   }
   {
     OutputDir out(dir);
-    write_mesh_sequence(out, seq);
+    write_mesh_sequence(out, seq, {}, MeshFormats{.obj = true});
     EXPECT_FALSE(fs::exists(dir / "mesh.pvd"));  // staged, not visible yet
     out.commit();
   }

@@ -17,6 +17,11 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 //! Reads a whole file. \throw IoError (FileNotFound) naming the path.
 std::string read_file(const std::filesystem::path& path);
 
+//! On SIGINT or SIGTERM, removes the staging folders of every live OutputDir (and the half-written files
+//! of write_file_atomic are left as NAME.tmp-PID only until the next run), then ends the process with the
+//! signal. For command-line tools; call once at start.
+void remove_stages_on_interrupt();
+
 //! A staging folder for the outputs of one run. Files go to `path(rel)`; `commit()` replaces the
 //! destination folder by the staged one; the destructor removes an uncommitted stage.
 class OutputDir {
@@ -41,6 +46,7 @@ class OutputDir {
   std::filesystem::path destination_;
   std::filesystem::path stage_;
   bool committed_ = false;
+  int slot_ = -1;  //!< this stage's entry in the list removed on SIGINT/SIGTERM
 };
 
 }  // namespace c4d

@@ -11,6 +11,7 @@
 
 #include "contour4d/core/mesh.h"
 #include "contour4d/pipeline/input.h"
+#include "contour4d/io/mesh_output.h"
 #include "contour4d/io/output_dir.h"
 #include "contour4d/metrics/result_check.h"
 #include "contour4d/motion/reconstruct4d.h"
@@ -59,9 +60,10 @@ ReconstructRun reconstruct_run(const InputResult& read, const std::string& input
                                const ReconstructRunOptions& options, const ProgressFn& progress = {},
                                const RunMessage& say = {});
 
-//! Writes a valid run into `out` (mesh.pvd, frames/, report.json) and commits it.
+//! Writes a valid run into `out` (mesh.pvd, frames/ in `formats`, report.json) and commits it.
 //! \throw SolverError (ErrorCode::InvalidResult) naming the first failing frame when !run.check.ok():
 //! nothing is written then; with a non-empty `keep_failed` the failed result goes there, marked FAILED.
-void write_run(OutputDir& out, const ReconstructRun& run, const std::string& keep_failed = {});
+void write_run(OutputDir& out, const ReconstructRun& run, const MeshFormats& formats = {},
+               const std::string& keep_failed = {});
 
 }  // namespace c4d
