@@ -12,6 +12,7 @@
 #include "contour4d/pipeline/input.h"
 #include "contour4d/io/output_dir.h"
 #include "contour4d/pipeline/reconstruct_run.h"
+#include "contour4d/pipeline/structures_run.h"
 #include "progress.h"
 
 namespace c4d::cli {
@@ -21,6 +22,7 @@ struct ReconstructArgs {
   std::string input;
   std::string output;
   InputOptions in;
+  std::vector<std::string> labels;  //!< --label, repeatable; "all"
   ReconstructRunOptions run;
   std::string keep_failed;
   std::string format = "vtp";
@@ -38,8 +40,8 @@ void print_input_summary(const ReconstructArgs& a, const InputResult& read) {
   std::cout << std::flush;
 }
 
-// The closing summary: mesh size, the volume curve, EDV/ESV/EF, where the output is.
-void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, double seconds) {
+// Mesh size, the volume curve and EDV/ESV/EF (and the mass, for a myocardial wall).
+void print_mesh_summary(const MeshSequence& result, bool wall) {
   std::vector<double> volumes;
   for (std::size_t f = 0; f < result.positions.size(); ++f) volumes.push_back(signed_volume(result.frame(f)));
   const auto ed = std::max_element(volumes.begin(), volumes.end());
@@ -53,11 +55,66 @@ void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, 
   if (volumes.size() > 1)
     std::cout << fmt::format("  EDV {:.1f} ml (frame {}), ESV {:.1f} ml (frame {}), EF {:.1f} %\n", edv / 1000,
                              ed - volumes.begin(), esv / 1000, es - volumes.begin(), 100 * (edv - esv) / edv);
+  if (wall) {
+    double mean = 0.0;
+    for (double v : volumes) mean += v / static_cast<double>(volumes.size());
+    std::cout << fmt::format("  wall mass {:.1f} g (mean over the frames, {} g/ml)\n", mean / 1000 * kMyocardiumDensity,
+                             kMyocardiumDensity);
+  }
+}
+
+// The closing summary of one structure: the mesh, its volumes, where the output is.
+void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, double seconds) {
+  print_mesh_summary(result, false);
   std::cout << fmt::format("  done in {:.2f} s. Output: {}/mesh.pvd (open in ParaView), frames/, report.json\n", seconds,
                            a.output);
 }
 
+// Several structures (--label all, or --label given more than once): each into OUTDIR/<label>/.
+int run_structures(const ReconstructArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const MeshFormats formats = parse_mesh_formats(a.format);
+  const InputResult read = read_contours(a.input, a.in);  // every label
+  OutputDir out(a.output);
+  print_input_summary(a, read);
+  const std::vector<Structure> structures = split_structures(read, a.labels);
+  std::vector<std::string> notes;
+  for (const Structure& s : structures)
+    for (const std::string& n : s.input.notes) {
+      if (std::find(read.notes.begin(), read.notes.end(), n) != read.notes.end()) continue;
+      notes.push_back(n);
+      std::cout << "  " << n << "\n";
+    }
+  ProgressBar bar;
+  const std::vector<StructureRun> runs = reconstruct_structures(
+      structures, a.input, a.run, [&bar](const char* stage, int done, int total) { bar.update(stage, done, total); },
+      [](const std::string& line) { std::cout << line << "\n" << std::flush; });
+  bar.finish();
+  const auto failed = std::find_if(runs.begin(), runs.end(), [](const StructureRun& r) { return r.error_code != 0; });
+  if (std::all_of(runs.begin(), runs.end(), [](const StructureRun& r) { return r.error_code != 0; }))
+    throw SolverError(static_cast<ErrorCode>(failed->error_code), Location{a.input},
+                      "no structure could be reconstructed; " + failed->structure.name + ": " + failed->error,
+                      "nothing was written to " + a.output);
+  write_structures(out, runs, formats, structures_report(runs, a.input, notes));
+  for (const StructureRun& r : runs) {
+    if (r.error_code != 0) continue;
+    std::cout << fmt::format("  {} (OUTDIR/{}/):\n", r.structure.name, r.structure.name);
+    print_mesh_summary(r.run.result, r.structure.wall);
+  }
+  std::cout << fmt::format("  done in {:.2f} s. Output: {}/<structure>/mesh.pvd, {}/report.json (every structure)\n",
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), a.output,
+                           a.output);
+  if (failed != runs.end()) {
+    std::cerr << fmt::format("contour4d: error: structure {} was not written (exit code {}): {}\n", failed->structure.name,
+                             failed->error_code, failed->error);
+    return failed->error_code;
+  }
+  return 0;
+}
+
 int run_reconstruct(ReconstructArgs a) {
+  if (a.labels.size() > 1 || (a.labels.size() == 1 && a.labels[0] == "all")) return run_structures(a);
+  if (a.labels.size() == 1) a.in.label = a.labels[0];
   const auto t0 = std::chrono::steady_clock::now();
   const MeshFormats formats = parse_mesh_formats(a.format);  // a bad --format stops before the work
   const InputResult read = read_contours(a.input, a.in);
@@ -103,7 +160,7 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_option("--cap", args->run.cap, "end caps: rounded, flat or open")
       ->capture_default_str()
       ->check(CLI::IsMember({"rounded", "flat", "open"}));
-  add_input_options(app, args->in);
+  add_input_options(app, args->in, &args->labels);
   app->add_option("--frame", args->run.frame, "reconstruct this frame only (0-based)");
   app->add_option("--threads", args->run.threads, "worker threads (0: all cores); the output does not depend on it");
   app->add_option("--format", args->format, "mesh files per frame: vtp (always, with mesh.pvd) and obj, e.g. vtp,obj")

@@ -2,4 +2,6 @@
 target_sources(contour4d PRIVATE
   pipeline/input.cpp
   pipeline/reconstruct_run.cpp
-  pipeline/pack_run.cpp)
+  pipeline/pack_run.cpp
+  pipeline/structures.cpp
+  pipeline/structures_run.cpp)

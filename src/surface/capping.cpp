@@ -10,6 +10,8 @@
 // follows a cubic Hermite section-area curve (docs/algorithms/one_frame_surface.md).
 #include "contour4d/surface/capping.h"
 
+#include "contour4d/core/errors.h"
+
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
@@ -225,6 +227,12 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
   {
     CDT cdt;
     insert_loops(cdt, loops);
+    // Loops that cross or share a point make vertices of their own (or merge two): the cap has no
+    // triangulation of the loops as given.
+    if (cdt.number_of_vertices() != static_cast<std::size_t>(loop_points))
+      throw InvalidInput(ErrorCode::SelfIntersection, Location{},
+                         "the contours to close by a cap cross or touch each other",
+                         "a contour inside another must not meet it: fix the contours of this slice");
     cdt_loops = cdt;
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) v->info() = 0;
     mark_domain(cdt);

@@ -428,6 +428,17 @@ void fill_end_bands(TriangleMesh& m, const std::vector<CapFill>& caps, const std
   }
 }
 
+// triangulate_cap, its failures named with the frame and slice.
+CapMesh cap_of_slice(const std::vector<std::vector<Vec2>>& loops, CapStyle style, const CapOptions& options,
+                     Location loc, int slice) {
+  try {
+    return triangulate_cap(loops, style, options);
+  } catch (const Error& e) {
+    loc.slice = slice;
+    throw InvalidInput(e.code(), loc, e.what());
+  }
+}
+
 }  // namespace
 
 TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& opt, SurfaceReport* report) {
@@ -823,7 +834,7 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
           cop.far_scale = 1.0;
           cop.uniform_scale = ring ? kRingCapScale : kUniformCapScale;
         }
-        const CapMesh cap = triangulate_cap(loops, opt.caps, cop);
+        const CapMesh cap = cap_of_slice(loops, opt.caps, cop, loc, slices[s].slice->id);
         for (double hk : cap.height) {
           lowest = std::min(lowest, slices[s].plane.origin.z - (top ? 0.0 : hk));
           highest = std::max(highest, slices[s].plane.origin.z + (top ? hk : 0.0));

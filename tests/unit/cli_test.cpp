@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -145,6 +146,38 @@ TEST(Cli, InterruptLeavesNoStagingFolder) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
   for (const auto& e : std::filesystem::directory_iterator(dir))
     EXPECT_NE(e.path().filename().string().front(), '.') << e.path();
+  std::filesystem::remove_all(dir);
+}
+
+// Every structure in one run: Sunnybrook's endocardium and epicardium, and the wall between them (the
+// myocardium), each into OUTDIR/<label>/ with one combined report holding the wall's mass.
+TEST(Cli, EveryStructureInOneRun) {
+  const std::string dir = ::testing::TempDir() + "c4d-cli-all";
+  std::filesystem::remove_all(dir);
+  const std::string sb = std::string(C4D_DATA_DIR) + "/sunnybrook-SC-HF-I-1";
+  const Result r = run("reconstruct " + sb + " --contours both --label all --threads 2 -o " + dir + "/out");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("wall mass"), std::string::npos) << r.out;
+  std::ifstream f(dir + "/out/report.json");
+  const nlohmann::ordered_json report = nlohmann::ordered_json::parse(f);
+  std::vector<std::string> names;
+  for (const auto& s : report["summary"]["structures"]) {
+    names.push_back(s["name"].get<std::string>());
+    EXPECT_TRUE(s["ok"].get<bool>()) << s.dump();
+    EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + names.back() + "/report.json")) << names.back();
+    if (names.back() == "lv-wall") {
+      ASSERT_EQ(s["mass_g"].size(), s["volume_ml"].size());
+      const double mass = s["mass_g"][0].get<double>();
+      EXPECT_NEAR(mass, 1.05 * s["volume_ml"][0].get<double>(), 1e-3);
+      EXPECT_GT(mass, 40.0);   // an adult left ventricle's myocardium: tens to a few hundred grams
+      EXPECT_LT(mass, 400.0);
+    }
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"lv-endo", "lv-epi", "lv-wall"}));
+  // A structure the input does not hold: refused before any work, nothing written.
+  const Result bad = run("reconstruct " + sb + " --contours both --label lv-endo --label rv -o " + dir + "/bad");
+  EXPECT_EQ(bad.code, 21) << bad.out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/bad"));
   std::filesystem::remove_all(dir);
 }
 

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "contour4d/core/contour.h"
+#include "contour4d/core/errors.h"
 #include "contour4d/surface/capping.h"
 #include "contour4d/surface/refine.h"
 #include "contour4d/surface/resample.h"
@@ -460,6 +461,23 @@ TEST(Caps, EndBandWidensToItsTarget) {
     if (v < n || v >= rings * n) {
       EXPECT_EQ(wide[static_cast<std::size_t>(v)], pos[static_cast<std::size_t>(v)]);
     }
+  }
+}
+
+// A hole that crosses its outer contour (an endocardium drawn across the epicardium): no cap exists, and
+// the cap says so (exit code 16) instead of indexing vertices the crossing made (a crash before).
+TEST(Cap, CrossingLoopsAreRefusedNotTriangulated) {
+  std::vector<c4d::Vec2> outer, hole;
+  for (int k = 0; k < 40; ++k) {
+    const double t = 2 * M_PI * k / 40;
+    outer.push_back({10 * std::cos(t), 10 * std::sin(t)});
+    hole.push_back({6 + 6 * std::cos(-t), 6 * std::sin(-t)});  // reaches out to x = 12
+  }
+  try {
+    c4d::triangulate_cap({outer, hole}, c4d::CapStyle::Rounded, {1.0, 2.0});
+    ADD_FAILURE() << "crossing loops triangulated";
+  } catch (const c4d::Error& e) {
+    EXPECT_EQ(e.code(), c4d::ErrorCode::SelfIntersection) << e.what();
   }
 }
 
