@@ -439,24 +439,36 @@ CapMesh cap_of_slice(const std::vector<std::vector<Vec2>>& loops, CapStyle style
   }
 }
 
-}  // namespace
-
-TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& opt, SurfaceReport* report) {
+// The state of one frame's construction, filled step by step by reconstruct_frame's steps below.
+struct FrameWork {
+  explicit FrameWork(const SurfaceOptions& options) : opt(options) {}
+  const SurfaceOptions& opt;
+  Location loc;                                  // the file and frame, for messages
   SurfaceReport rep;
-  Location loc;
-  loc.file = seq.source;
-  loc.frame = frame;
-  if (frame < 0 || frame >= static_cast<int>(seq.frames.size()))
-    throw InvalidInput(ErrorCode::Usage, loc,
-                       "frame " + std::to_string(frame) + " does not exist (the input has " +
-                           std::to_string(seq.frames.size()) + " frames)",
-                       "pick a frame from 0 to the frame count - 1");
-  if (!(opt.edge > 0) || !std::isfinite(opt.edge))
-    throw InvalidInput(ErrorCode::Usage, loc, "the target edge length must be a positive number of mm",
-                       "use e.g. --edge 1.0");
-  const Frame& f = seq.frames[static_cast<std::size_t>(frame)];
+  Sequence sub;                                  // the chosen structure's contours as a one-frame sequence
+  Frame ff;                                      // those contours, slices by increasing offset
+  std::vector<std::vector<int>> original_index;  // per sorted slice: filtered index -> input index
+  std::vector<Connection> links;                 // the connectivity tree's links between slices
+  CanonicalFrame frame2d;                        // centre and principal axis (rigid invariance)
+  Builder b;                                     // vertices and triangles made so far
+  Plane world;                                   // canonical frame of the first slice in world space
+  std::vector<Node> nodes;                       // one per resampled contour
+  std::vector<SliceInfo> slices;
+  std::vector<std::vector<int>> node_of;         // per slice: filtered index -> node
+  std::uint32_t contour_vertices = 0;            // vertices [0, this) are contour vertices
+  PairLinks pair_links;                          // per slice pair: linked node pairs
+  std::vector<Triangle> to_remesh;               // band triangles left for remeshing (branchings)
+  RemeshEngine engine = RemeshEngine::Cgal;
+  double lowest = 0.0, highest = 0.0;            // the caps' reach below the first and above the last slice
+  std::vector<char> fixed;                       // per vertex: kept in place by fairing and remeshing
+  std::vector<char> keep_shape;                  // per vertex: a dome vertex that keeps its shape
+  std::vector<double> row_scale;                 // per vertex: the fairing row's scale (coarse caps)
+  std::vector<char> scale_aware;                 // per vertex: its fairing term is scale-aware (ring caps)
+  std::vector<CapFill> fills;                    // the Rounded caps to fill towards the sections' trend
+};
 
-  // Label selection.
+// Step 1: the structure to build (SurfaceOptions::label, or the only one present).
+std::string choose_label(const Frame& f, const SurfaceOptions& opt, const Location& loc) {
   std::set<std::string> present;
   for (const Slice& s : f.slices)
     for (const Contour& c : s.contours) present.insert(c.label);
@@ -474,14 +486,20 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
                        "check the labels with `contour4d info`");
   }
 
-  // Filtered frame (input order kept) for the connectivity tree.
-  Sequence sub;
+  return label;
+}
+
+// Step 2: the structure's contours by slice offset, the connectivity tree's links and the canonical frame.
+void filter_frame(FrameWork& fw, const Sequence& seq, const Frame& f, const std::string& label) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& loc = fw.loc;
+  auto& sub = fw.sub;
+  auto& ff = fw.ff;
+  auto& original_index = fw.original_index;
   sub.normal = seq.normal;
   sub.u = seq.u;
   sub.v = seq.v;
   sub.source = seq.source;
-  Frame ff;
-  std::vector<std::vector<int>> original_index;  // per sorted slice: filtered index -> input index
   std::vector<const Slice*> sorted;
   for (const Slice& s : f.slices) sorted.push_back(&s);
   std::stable_sort(sorted.begin(), sorted.end(), [](const Slice* a, const Slice* b) { return a->offset < b->offset; });
@@ -504,16 +522,27 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   sub.frames.push_back(ff);
   ConnectivityOptions copt;
   copt.threshold = opt.threshold;
-  const std::vector<Connection> links = intra_frame_connections(sub, 0, copt);
+  fw.links = intra_frame_connections(sub, 0, copt);
 
-  const CanonicalFrame frame2d = canonical_frame(sub);
+  fw.frame2d = canonical_frame(sub);
 
-  // Canonical, resampled contours and their vertices.
-  Builder b;
-  Plane world;  // canonical frame of the first slice in world space
-  std::vector<Node> nodes;
-  std::vector<SliceInfo> slices(ff.slices.size());
-  std::vector<std::vector<int>> node_of(ff.slices.size());  // filtered index -> node
+}
+
+// Step 3: canonical, resampled contours and their vertices, in a local frame.
+void canonical_contours(FrameWork& fw) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& rep = fw.rep;
+  auto& sub = fw.sub;
+  auto& ff = fw.ff;
+  auto& original_index = fw.original_index;
+  auto& frame2d = fw.frame2d;
+  auto& b = fw.b;
+  auto& world = fw.world;
+  auto& nodes = fw.nodes;
+  auto& slices = fw.slices;
+  auto& node_of = fw.node_of;
+  slices.resize(ff.slices.size());
+  node_of.resize(ff.slices.size());  // filtered index -> node
   ResampleOptions ropt;
   ropt.edge = opt.edge;
   ropt.corner_angle_deg = opt.corner_angle_deg;
@@ -568,15 +597,25 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
         nodes[static_cast<std::size_t>(id)].chain.push_back(b.add(from_plane(si.plane, p)));
   }
   rep.contours = static_cast<int>(nodes.size());
-  const std::uint32_t contour_vertices = static_cast<std::uint32_t>(b.positions.size());
+  fw.contour_vertices = static_cast<std::uint32_t>(b.positions.size());
 
-  // Links as node pairs, per slice pair.
+}
+
+// Step 4: the links as node pairs, per slice pair (and in the report).
+void link_nodes(FrameWork& fw, int frame) {
+  auto& rep = fw.rep;
+  auto& ff = fw.ff;
+  auto& original_index = fw.original_index;
+  auto& links = fw.links;
+  auto& nodes = fw.nodes;
+  auto& node_of = fw.node_of;
+  auto& pair_links = fw.pair_links;
   auto slice_index = [&](int id) {
     for (std::size_t s = 0; s < ff.slices.size(); ++s)
       if (ff.slices[s].id == id) return static_cast<int>(s);
     return -1;
   };
-  PairLinks pair_links(ff.slices.size());
+  pair_links.resize(ff.slices.size());
   for (const Connection& c : links) {
     const int sa = slice_index(c.slice_a), sb = slice_index(c.slice_b);
     const int na = node_of[sa][c.contour_a], nb = node_of[sb][c.contour_b];
@@ -592,9 +631,20 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     nodes[sa < sb ? nb : na].linked_down = true;
   }
 
-  // Walls between connected contours.
-  std::vector<Triangle> to_remesh;  // band triangles left for remeshing
-  const RemeshEngine engine = opt.rows ? opt.rows_remesher : opt.remesher;
+}
+
+// Step 5: the walls between connected contours: rows, bands, bridges at branchings, or the paper's
+// Delaunay tiling.
+void tile_walls(FrameWork& fw) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& rep = fw.rep;
+  auto& ff = fw.ff;
+  auto& b = fw.b;
+  auto& nodes = fw.nodes;
+  auto& slices = fw.slices;
+  auto& pair_links = fw.pair_links;
+  auto& to_remesh = fw.to_remesh;
+  fw.engine = opt.rows ? opt.rows_remesher : opt.remesher;
   for (std::size_t s = 0; s + 1 < slices.size(); ++s) {
     if (pair_links[s].empty()) continue;
     std::vector<int> parent(nodes.size());
@@ -725,8 +775,17 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     }
   }
 
-  // Bands without rows (branchings) are remeshed on their own; their borders are contours, which
-  // stay fixed and unsplit, so the caps and the neighbouring bands still meet them edge to edge.
+}
+
+// Step 6: bands without rows (branchings) remeshed on their own; their borders are contours, which
+// stay fixed and unsplit, so the caps and the neighbouring bands still meet them edge to edge.
+void remesh_branch_bands(FrameWork& fw) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& b = fw.b;
+  auto& nodes = fw.nodes;
+  auto& contour_vertices = fw.contour_vertices;
+  auto& to_remesh = fw.to_remesh;
+  auto& engine = fw.engine;
   if (!to_remesh.empty()) {
     TriangleMesh part;
     std::map<std::uint32_t, std::uint32_t> local;
@@ -775,7 +834,26 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     for (const Triangle& t : part.triangles) b.triangles.push_back({to_global[t[0]], to_global[t[1]], to_global[t[2]]});
   }
 
-  // Caps on contours without a partner above (top) or below (bottom).
+}
+
+// Step 7: caps on contours without a partner above (top) or below (bottom).
+void add_caps(FrameWork& fw) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& loc = fw.loc;
+  auto& rep = fw.rep;
+  auto& ff = fw.ff;
+  auto& b = fw.b;
+  auto& nodes = fw.nodes;
+  auto& slices = fw.slices;
+  auto& contour_vertices = fw.contour_vertices;
+  auto& pair_links = fw.pair_links;
+  auto& lowest = fw.lowest;
+  auto& highest = fw.highest;
+  auto& fixed = fw.fixed;
+  auto& keep_shape = fw.keep_shape;
+  auto& row_scale = fw.row_scale;
+  auto& scale_aware = fw.scale_aware;
+  auto& fills = fw.fills;
   auto spacing = [&](std::size_t s, bool top) {
     if (top && s + 1 < ff.slices.size()) return ff.slices[s + 1].offset - ff.slices[s].offset;
     if (!top && s > 0) return ff.slices[s].offset - ff.slices[s - 1].offset;
@@ -783,13 +861,10 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     if (s > 0) return ff.slices[s].offset - ff.slices[s - 1].offset;
     return std::numeric_limits<double>::infinity();  // single slice: the dome is limited by the region's width
   };
-  double lowest = 0.0, highest = slices.back().plane.origin.z;
-  std::vector<char> fixed(b.positions.size(), 0);
+  lowest = 0.0;
+  highest = slices.back().plane.origin.z;
+  fixed.assign(b.positions.size(), 0);
   std::fill(fixed.begin(), fixed.begin() + contour_vertices, 1);
-  std::vector<char> keep_shape;
-  std::vector<double> row_scale;
-  std::vector<char> scale_aware;  // per vertex: its fairing term is scale-aware (ring caps)
-  std::vector<CapFill> fills;
   for (std::size_t s = 0; s < slices.size(); ++s)
     for (bool top : {false, true}) {
       std::vector<char> consumed(nodes.size(), 0);
@@ -888,12 +963,30 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
       }
     }
 
+}
+
+// Step 8: the tiled surface faired and smoothed (free vertices), held within the caps' reach, its
+// domes and closing walls filled towards the sections' trend.
+TriangleMesh fair(FrameWork& fw, bool& manifold) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& rep = fw.rep;
+  auto& b = fw.b;
+  auto& nodes = fw.nodes;
+  auto& slices = fw.slices;
+  auto& pair_links = fw.pair_links;
+  auto& lowest = fw.lowest;
+  auto& highest = fw.highest;
+  auto& fixed = fw.fixed;
+  auto& keep_shape = fw.keep_shape;
+  auto& row_scale = fw.row_scale;
+  auto& scale_aware = fw.scale_aware;
+  auto& fills = fw.fills;
   TriangleMesh mesh{std::move(b.positions), std::move(b.triangles)};
   fixed.resize(mesh.positions.size(), 0);
   keep_shape.resize(mesh.positions.size(), 0);
 
   const MeshCheck coarse = check_mesh(mesh, false);
-  const bool manifold = coarse.nonmanifold_edges == 0 && coarse.nonmanifold_vertices == 0 && coarse.misoriented_edges == 0;
+  manifold = coarse.nonmanifold_edges == 0 && coarse.nonmanifold_vertices == 0 && coarse.misoriented_edges == 0;
   if (!manifold)
     rep.warnings.push_back("the tiled surface is not a clean 2-manifold (" + std::to_string(coarse.nonmanifold_edges) +
                            " non-manifold edges, " + std::to_string(coarse.nonmanifold_vertices) +
@@ -930,9 +1023,16 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     for (const CapFill& cf : fills) fill_cap(mesh.positions, cf.triangles, cf.frame, cf.target);
   // The walls into closing ends: widened to the smooth section-area curve's volume.
   if (moved && !fills.empty()) fill_end_bands(mesh, fills, nodes, slices, pair_links, fixed);
-  // Fairing moved the free vertices, stretching triangles where it moved them most (bridges at
-  // branchings, domes): one isotropic remeshing of the whole faired surface, projected onto it, with
-  // every contour kept as a fixed chain of edges, evens them out across band and cap borders.
+  return mesh;
+}
+
+// Step 9: one isotropic remeshing of the faired surface with every contour edge kept; returns those
+// edges.
+std::vector<std::array<std::uint32_t, 2>> remesh_final(FrameWork& fw, TriangleMesh& mesh, bool manifold) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& nodes = fw.nodes;
+  auto& engine = fw.engine;
+  auto& fixed = fw.fixed;
   // Every contour edge: kept by the final remeshing and never flipped.
   std::vector<std::array<std::uint32_t, 2>> constrained;
   for (const Node& n : nodes)
@@ -960,8 +1060,14 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
     remesh_isotropic(mesh, constrained, fixed, mo);
     flip_edges_delaunay(mesh, constrained);
   }
-  // The few thin triangles left (next to contour vertices, at branchings): their free vertices move
-  // within the surface to maximise their ring's smallest angle.
+  return constrained;
+}
+
+// Step 10: the few thin triangles left: their free vertices moved within the surface.
+void repair_angles(FrameWork& fw, TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
+                   bool manifold) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& fixed = fw.fixed;
   if (manifold && opt.angle_repair.passes > 0) {
     // Trial positions a fraction of an edge from their vertex: snapped by a walk over the surface
     // from one of the vertex's triangles (no tree to build).
@@ -981,7 +1087,13 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
       repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
   }
 
-  // Drop unused vertices (contours left without walls or caps when caps are open).
+}
+
+// Step 11: unused vertices dropped, back to world space, the final checks into the report.
+TriangleMesh finish(FrameWork& fw, TriangleMesh& mesh) {
+  const SurfaceOptions& opt = fw.opt;
+  auto& rep = fw.rep;
+  auto& world = fw.world;
   std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);
   for (const Triangle& t : mesh.triangles)
     for (std::uint32_t v : t) remap[v] = 0;
@@ -1006,7 +1118,41 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   if (!rep.closed && opt.caps != CapStyle::Open)
     rep.warnings.push_back("the surface is not closed: " + std::to_string(fin.boundary_edges) + " boundary edges");
   if (rep.self_intersects) rep.warnings.push_back("the surface intersects itself");
-  if (report) *report = std::move(rep);
+  return out;
+}
+
+}  // namespace
+
+TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& opt, SurfaceReport* report) {
+  SurfaceReport rep;
+  Location loc;
+  loc.file = seq.source;
+  loc.frame = frame;
+  if (frame < 0 || frame >= static_cast<int>(seq.frames.size()))
+    throw InvalidInput(ErrorCode::Usage, loc,
+                       "frame " + std::to_string(frame) + " does not exist (the input has " +
+                           std::to_string(seq.frames.size()) + " frames)",
+                       "pick a frame from 0 to the frame count - 1");
+  if (!(opt.edge > 0) || !std::isfinite(opt.edge))
+    throw InvalidInput(ErrorCode::Usage, loc, "the target edge length must be a positive number of mm",
+                       "use e.g. --edge 1.0");
+  const Frame& f = seq.frames[static_cast<std::size_t>(frame)];
+
+  FrameWork fw(opt);
+  fw.loc = loc;
+  fw.rep = std::move(rep);
+  filter_frame(fw, seq, f, choose_label(f, opt, loc));
+  canonical_contours(fw);
+  link_nodes(fw, frame);
+  tile_walls(fw);
+  remesh_branch_bands(fw);
+  add_caps(fw);
+  bool manifold = false;
+  TriangleMesh mesh = fair(fw, manifold);
+  const auto constrained = remesh_final(fw, mesh, manifold);
+  repair_angles(fw, mesh, constrained, manifold);
+  TriangleMesh out = finish(fw, mesh);
+  if (report) *report = std::move(fw.rep);
   return out;
 }
 
