@@ -65,7 +65,7 @@ void print_mesh_summary(const MeshSequence& result, bool wall) {
 
 // The closing summary of one structure: the mesh, its volumes, where the output is.
 void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, double seconds) {
-  print_mesh_summary(result, false);
+  print_mesh_summary(result, a.run.label == kLvWall);
   std::cout << fmt::format("  done in {:.2f} s. Output: {}/mesh.pvd (open in ParaView), frames/, report.json\n", seconds,
                            a.output);
 }
@@ -114,12 +114,18 @@ int run_structures(const ReconstructArgs& a) {
 
 int run_reconstruct(ReconstructArgs a) {
   if (a.labels.size() > 1 || (a.labels.size() == 1 && a.labels[0] == "all")) return run_structures(a);
-  if (a.labels.size() == 1) a.in.label = a.labels[0];
+  const bool wall = a.labels.size() == 1 && a.labels[0] == kLvWall;  // made from lv-endo and lv-epi
+  if (a.labels.size() == 1 && !wall) a.in.label = a.labels[0];
   const auto t0 = std::chrono::steady_clock::now();
   const MeshFormats formats = parse_mesh_formats(a.format);  // a bad --format stops before the work
-  const InputResult read = read_contours(a.input, a.in);
+  InputResult read = read_contours(a.input, a.in);
+  if (wall) {
+    std::vector<std::string> notes = std::move(read.notes);
+    read = split_structures(read, {kLvWall}).front().input;
+    read.notes.insert(read.notes.begin(), notes.begin(), notes.end());
+  }
   OutputDir out(a.output);  // checks the destination is writable before the work starts
-  a.run.label = a.in.label;
+  a.run.label = wall ? kLvWall : a.in.label;
   print_input_summary(a, read);
   ProgressBar bar;
   const ReconstructRun run = reconstruct_run(

@@ -12,6 +12,7 @@
 
 #include "contour4d/core/errors.h"
 #include "contour4d/io/mesh_output.h"
+#include "contour4d/pipeline/structures.h"
 
 namespace c4d {
 namespace {
@@ -252,6 +253,11 @@ Json summary_json(const ReconstructRun& run, const InputResult& read, const Reco
   s["ef_percent"] = *ed > 0 ? 100.0 * (*ed - *es) / *ed : 0.0;
   s["vertices"] = result.positions.front().size();
   s["triangles"] = result.triangles.size();
+  if (a.label == kLvWall) {
+    std::vector<double> mass_g;
+    for (double v : volumes_ml) mass_g.push_back(v * kMyocardiumDensity);
+    s["mass_g"] = mass_g;  // the myocardium's mass per frame
+  }
   s["correspondence"] = true;  // one triangle list for every frame, by construction
   s["checks_ok"] = run.check.ok();
   s["method"] = report["options"]["method"];

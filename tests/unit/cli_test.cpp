@@ -174,6 +174,12 @@ TEST(Cli, EveryStructureInOneRun) {
     }
   }
   EXPECT_EQ(names, (std::vector<std::string>{"lv-endo", "lv-epi", "lv-wall"}));
+  // The wall alone: one output folder whose summary holds the mass per frame.
+  const Result wall = run("reconstruct " + sb + " --contours both --label lv-wall -o " + dir + "/wall");
+  ASSERT_EQ(wall.code, 0) << wall.out;
+  std::ifstream wf(dir + "/wall/report.json");
+  const nlohmann::ordered_json wr = nlohmann::ordered_json::parse(wf);
+  EXPECT_EQ(wr["summary"]["mass_g"].size(), wr["summary"]["volume_ml"].size());
   // A structure the input does not hold: refused before any work, nothing written.
   const Result bad = run("reconstruct " + sb + " --contours both --label lv-endo --label rv -o " + dir + "/bad");
   EXPECT_EQ(bad.code, 21) << bad.out;
