@@ -633,6 +633,93 @@ void link_nodes(FrameWork& fw, int frame) {
 
 }
 
+// Step 5a: the paper's tiling of one linked group of a slice pair: the constrained Delaunay triangulation of
+// the projected symmetric difference with chordal-axis lifting points. False (with a warning) where it fails;
+// the band tiling is used there.
+bool tile_delaunay(FrameWork& fw, std::size_t s, const std::vector<int>& lower, const std::vector<int>& upper, double gap,
+                   std::vector<Triangle>& dest) {
+  auto& rep = fw.rep;
+  auto& ff = fw.ff;
+  auto& b = fw.b;
+  auto& nodes = fw.nodes;
+  auto& slices = fw.slices;
+  bool tiled = false;
+  // Both slices' contours projected on the lower plane; ids lists their vertices in the
+  // tiling's order (lower polygons, then upper, then the new points).
+  std::vector<std::uint32_t> ids;
+  auto project = [&](const std::vector<int>& side) {
+    std::vector<std::vector<Vec2>> polys;
+    for (int n : side) {
+      polys.emplace_back();
+      for (std::uint32_t v : nodes[n].chain) {
+        polys.back().push_back(to_plane(slices[s].plane, b.positions[v]));
+        ids.push_back(v);
+      }
+    }
+    return polys;
+  };
+  const auto lp = project(lower);
+  const auto up = project(upper);
+  std::string problem;
+  try {
+    const DelaunayTiling dt = tile_slices_delaunay(lp, up, gap);
+    if (dt.flat_triangles > 0) problem = std::to_string(dt.flat_triangles) + " flat triangles left";
+    for (const std::string& w : dt.warnings)
+      if (w.find("manifold") != std::string::npos) problem = w;
+    if (problem.empty()) {
+      for (const Vec3& p : dt.points) ids.push_back(b.add(from_plane(slices[s].plane, {p.x, p.y}, p.z)));
+      // The tiling tells inside from outside by nesting parity within the pair; when the
+      // outermost contours of this pair are holes (hole↔hole links), the solid is outside them.
+      int shallowest = std::numeric_limits<int>::max();
+      for (int n : lower) shallowest = std::min(shallowest, nodes[n].depth);
+      for (int n : upper) shallowest = std::min(shallowest, nodes[n].depth);
+      const bool flip = shallowest % 2 == 1;
+      for (const Triangle& t : dt.triangles)
+        dest.push_back(flip ? Triangle{ids[t[0]], ids[t[2]], ids[t[1]]} : Triangle{ids[t[0]], ids[t[1]], ids[t[2]]});
+      tiled = true;
+    }
+  } catch (const Error& e) {
+    problem = e.what();
+  }
+  if (!tiled)
+    rep.warnings.push_back("slices " + std::to_string(ff.slices[s].id) + "-" + std::to_string(ff.slices[s + 1].id) +
+                             ": Delaunay tiling not possible (" + problem + "); band tiling used");
+  return tiled;
+}
+
+// Step 5b: at a 1→n or n→1 branching, each vertex of the single contour may only be joined to the contour of
+// the other side it is nearest to (in the plane) or to a bridge, so the band cannot fold across a bridge: the
+// group of every vertex of the lower chain `lc` and the upper chain `uc` (-1: a bridge).
+void branch_groups(const std::vector<Node>& nodes, const std::vector<int>& lower, const std::vector<int>& upper,
+                   const std::vector<std::uint32_t>& lc, const std::vector<std::uint32_t>& uc, std::vector<int>& lg,
+                   std::vector<int>& ug) {
+  const std::vector<int>& many = lower.size() > 1 ? lower : upper;
+  const int single = lower.size() > 1 ? upper[0] : lower[0];
+  const auto& merged = lower.size() > 1 ? lc : uc;
+  std::map<std::uint32_t, int> member;
+  for (std::size_t k = 0; k < many.size(); ++k)
+    for (std::uint32_t v : nodes[many[k]].chain) member[v] = static_cast<int>(k);
+  std::vector<int> mg, sg;
+  for (std::uint32_t v : merged) {
+    const auto it = member.find(v);
+    mg.push_back(it == member.end() ? -1 : it->second);
+  }
+  for (const Vec2& p : nodes[single].poly) {
+    double best = std::numeric_limits<double>::infinity();
+    int g = -1;
+    for (std::size_t k = 0; k < many.size(); ++k) {
+      const double d = polygon_distance(p, nodes[many[k]].poly);
+      if (d < best) {
+        best = d;
+        g = static_cast<int>(k);
+      }
+    }
+    sg.push_back(g);
+  }
+  lg = lower.size() > 1 ? mg : sg;
+  ug = lower.size() > 1 ? sg : mg;
+}
+
 // Step 5: the walls between connected contours: rows, bands, bridges at branchings, or the paper's
 // Delaunay tiling.
 void tile_walls(FrameWork& fw) {
@@ -667,50 +754,9 @@ void tile_walls(FrameWork& fw) {
                                ": " + std::to_string(lower.size()) + "→" + std::to_string(upper.size()) +
                                " branching joined through bridges on both slices; check the surface there");
       // The paper's tiling: CDT of the projected symmetric difference with CAT lifting points.
-      bool tiled = false;
       auto& dest = opt.remesh ? to_remesh : b.triangles;
-      if (opt.tiling == Tiling::Delaunay && !(opt.rows && lower.size() == 1 && upper.size() == 1)) {
-        // Both slices' contours projected on the lower plane; ids lists their vertices in the
-        // tiling's order (lower polygons, then upper, then the new points).
-        std::vector<std::uint32_t> ids;
-        auto project = [&](const std::vector<int>& side) {
-          std::vector<std::vector<Vec2>> polys;
-          for (int n : side) {
-            polys.emplace_back();
-            for (std::uint32_t v : nodes[n].chain) {
-              polys.back().push_back(to_plane(slices[s].plane, b.positions[v]));
-              ids.push_back(v);
-            }
-          }
-          return polys;
-        };
-        const auto lp = project(lower);
-        const auto up = project(upper);
-        std::string problem;
-        try {
-          const DelaunayTiling dt = tile_slices_delaunay(lp, up, gap);
-          if (dt.flat_triangles > 0) problem = std::to_string(dt.flat_triangles) + " flat triangles left";
-          for (const std::string& w : dt.warnings)
-            if (w.find("manifold") != std::string::npos) problem = w;
-          if (problem.empty()) {
-            for (const Vec3& p : dt.points) ids.push_back(b.add(from_plane(slices[s].plane, {p.x, p.y}, p.z)));
-            // The tiling tells inside from outside by nesting parity within the pair; when the
-            // outermost contours of this pair are holes (hole↔hole links), the solid is outside them.
-            int shallowest = std::numeric_limits<int>::max();
-            for (int n : lower) shallowest = std::min(shallowest, nodes[n].depth);
-            for (int n : upper) shallowest = std::min(shallowest, nodes[n].depth);
-            const bool flip = shallowest % 2 == 1;
-            for (const Triangle& t : dt.triangles)
-              dest.push_back(flip ? Triangle{ids[t[0]], ids[t[2]], ids[t[1]]} : Triangle{ids[t[0]], ids[t[1]], ids[t[2]]});
-            tiled = true;
-          }
-        } catch (const Error& e) {
-          problem = e.what();
-        }
-        if (!tiled)
-          rep.warnings.push_back("slices " + std::to_string(ff.slices[s].id) + "-" + std::to_string(ff.slices[s + 1].id) +
-                                   ": Delaunay tiling not possible (" + problem + "); band tiling used");
-      }
+      const bool tiled = opt.tiling == Tiling::Delaunay && !(opt.rows && lower.size() == 1 && upper.size() == 1) &&
+                         tile_delaunay(fw, s, lower, upper, gap, dest);
       if (tiled) continue;
       // Bridge height above the slice of the several contours: the saddle where they join lies near
       // the single contour's slice (measured on the idealized left heart, ED and ES: bridges at 0.75 of
@@ -740,36 +786,8 @@ void tile_walls(FrameWork& fw) {
           continue;
         }
       }
-      // 1→n / n→1: each vertex of the single contour may only be joined to the contour of the other
-      // side it is nearest to (in the plane) or to a bridge, so the band cannot fold across a bridge.
       std::vector<int> lg, ug;
-      if (!both && (lower.size() > 1 || upper.size() > 1)) {
-        const std::vector<int>& many = lower.size() > 1 ? lower : upper;
-        const int single = lower.size() > 1 ? upper[0] : lower[0];
-        const auto& merged = lower.size() > 1 ? lc : uc;
-        std::map<std::uint32_t, int> member;
-        for (std::size_t k = 0; k < many.size(); ++k)
-          for (std::uint32_t v : nodes[many[k]].chain) member[v] = static_cast<int>(k);
-        std::vector<int> mg, sg;
-        for (std::uint32_t v : merged) {
-          const auto it = member.find(v);
-          mg.push_back(it == member.end() ? -1 : it->second);
-        }
-        for (const Vec2& p : nodes[single].poly) {
-          double best = std::numeric_limits<double>::infinity();
-          int g = -1;
-          for (std::size_t k = 0; k < many.size(); ++k) {
-            const double d = polygon_distance(p, nodes[many[k]].poly);
-            if (d < best) {
-              best = d;
-              g = static_cast<int>(k);
-            }
-          }
-          sg.push_back(g);
-        }
-        lg = lower.size() > 1 ? mg : sg;
-        ug = lower.size() > 1 ? sg : mg;
-      }
+      if (!both && (lower.size() > 1 || upper.size() > 1)) branch_groups(nodes, lower, upper, lc, uc, lg, ug);
       const auto tris = tile_chains(lc, uc, b.positions, lg, ug);
       dest.insert(dest.end(), tris.begin(), tris.end());
     }
