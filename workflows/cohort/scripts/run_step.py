@@ -6,8 +6,8 @@ stops the others.
 usage: run_step.py --status STATUS.json [--after PREVIOUS.json] -- COMMAND...
 
 STATUS.json gets {"command", "exit_code", "message", "seconds", "skipped"}: the exit code and the last error
-line of the command, or, when the previous step failed, skipped = true with that step's exit code. The
-command's output goes to STATUS.log beside it.
+line of the command (128 + N for a signal N), or, when the previous step failed, skipped = true with that
+step's exit code. The command's output goes to STATUS.log beside it.
 """
 import argparse
 import json
@@ -23,6 +23,20 @@ def last_error(text):
     return (errors or lines or [""])[-1][:500]
 
 
+def run(command):
+    """(exit code, message, output, seconds) of one command."""
+    t0 = time.monotonic()
+    try:
+        p = subprocess.run(command, capture_output=True, text=True)
+    except OSError as e:  # the binary itself is missing or not executable
+        p = subprocess.CompletedProcess(command, 127, "", f"error: cannot run {command[0]}: {e}\n")
+    seconds = round(time.monotonic() - t0, 3)
+    if p.returncode < 0:
+        return 128 - p.returncode, f"killed by signal {-p.returncode}", p.stdout + p.stderr, seconds
+    message = last_error(p.stderr or p.stdout) if p.returncode else ""
+    return p.returncode, message, p.stdout + p.stderr, seconds
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--status", required=True)
@@ -36,16 +50,14 @@ def main():
     if previous and previous["exit_code"] != 0:
         status.update(exit_code=previous["exit_code"], message=previous["message"], skipped=True,
                       failed_step=previous.get("failed_step", os.path.basename(a.after)[:-5]))
+        output = f"skipped: the {status['failed_step']} step failed (exit code {status['exit_code']})\n"
     else:
-        t0 = time.monotonic()
-        p = subprocess.run(command, capture_output=True, text=True)
-        status["seconds"] = round(time.monotonic() - t0, 3)
-        status["exit_code"] = p.returncode
-        with open(a.status[:-5] + ".log", "w") as log:
-            log.write(p.stdout + p.stderr)
-        if p.returncode != 0:
-            status["message"] = last_error(p.stderr or p.stdout)
+        code, message, output, seconds = run(command)
+        status.update(exit_code=code, message=message, seconds=seconds)
+        if code:
             status["failed_step"] = os.path.basename(a.status)[:-5]
+    with open(a.status[:-5] + ".log", "w") as f:
+        f.write(output)
     tmp = a.status + ".tmp"
     with open(tmp, "w") as f:
         json.dump(status, f, indent=2)
