@@ -265,9 +265,8 @@ py::dict reconstruct(const py::object& input, const std::optional<std::filesyste
     if (output) out.emplace(*output);
     run = reconstruct_run(read, name, options);
     if (out) write_run(*out, run, formats, keep_failed ? keep_failed->string() : std::string());
-    else if (!run.check.ok())
-      throw SolverError(ErrorCode::InvalidResult, Location{name}, "the reconstruction failed its checks: " + run.check.summary(),
-                        "pass output= and keep_failed= to write the failed result for debugging");
+    else
+      throw_if_failed(run, "pass output= and keep_failed= to write the failed result for debugging");
   }
   py::dict d = mesh_dict(run.result);
   d["report"] = json_loads(run.report);

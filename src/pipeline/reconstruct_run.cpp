@@ -313,6 +313,12 @@ ReconstructRun reconstruct_run(const InputResult& read, const std::string& input
   return run;
 }
 
+void throw_if_failed(const ReconstructRun& run, const std::string& hint) {
+  if (!run.check.ok())
+    throw SolverError(ErrorCode::InvalidResult, Location{run.input},
+                      "the reconstruction failed its checks: " + run.check.summary(), hint);
+}
+
 void write_run(OutputDir& out, const ReconstructRun& run, const MeshFormats& formats, const std::string& keep_failed) {
   if (!run.check.ok()) {
     std::string hint = fmt::format("nothing was written to {}", out.destination().string());
@@ -328,8 +334,7 @@ void write_run(OutputDir& out, const ReconstructRun& run, const MeshFormats& for
     } else {
       hint += "; --keep-failed DIR writes the failed result there for debugging";
     }
-    throw SolverError(ErrorCode::InvalidResult, Location{run.input},
-                      "the reconstruction failed its checks: " + run.check.summary(), hint);
+    throw_if_failed(run, hint);
   }
   write_mesh_sequence(out, run.result, fmt::format("contour4d reconstruct {}", run.input), formats);
   out.write("report.json", run.report);

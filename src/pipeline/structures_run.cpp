@@ -2,7 +2,6 @@
 #include "contour4d/pipeline/structures_run.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -13,11 +12,6 @@ namespace c4d {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-double round4(double v) {
-  const double r = std::round(v * 1e4) / 1e4;
-  return r == 0.0 ? 0.0 : r;
-}
 
 Json structure_json(const StructureRun& r) {
   Json j;
@@ -37,10 +31,8 @@ Json structure_json(const StructureRun& r) {
   // ED and ES as input frames (a structure may lack some frames).
   j["ed_frame"] = r.structure.frames[s["ed_frame"].get<std::size_t>()];
   j["es_frame"] = r.structure.frames[s["es_frame"].get<std::size_t>()];
-  if (r.structure.wall) {
-    Json mass = Json::array();
-    for (const Json& v : s["volume_ml"]) mass.push_back(round4(v.get<double>() * kMyocardiumDensity));
-    j["mass_g"] = mass;
+  if (r.structure.wall) {  // the wall's own report holds its mass per frame
+    j["mass_g"] = s["mass_g"];
     j["density_g_per_ml"] = kMyocardiumDensity;
   }
   j["notes"] = r.structure.input.notes;

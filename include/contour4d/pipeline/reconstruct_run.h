@@ -60,6 +60,9 @@ ReconstructRun reconstruct_run(const InputResult& read, const std::string& input
                                const ReconstructRunOptions& options, const ProgressFn& progress = {},
                                const RunMessage& say = {});
 
+//! \throw SolverError (ErrorCode::InvalidResult) naming the first failing frame when !run.check.ok(), with `hint`.
+void throw_if_failed(const ReconstructRun& run, const std::string& hint);
+
 //! Writes a valid run into `out` (mesh.pvd, frames/ in `formats`, report.json) and commits it.
 //! \throw SolverError (ErrorCode::InvalidResult) naming the first failing frame when !run.check.ok():
 //! nothing is written then; with a non-empty `keep_failed` the failed result goes there, marked FAILED.
