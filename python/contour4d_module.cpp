@@ -153,7 +153,6 @@ InputOptions input_options(const py::kwargs& kw) {
     else if (k == "frame_ms") o.frame_ms = v.cast<double>();
     else if (k == "cycle_ms") o.cycle_ms = v.cast<double>();
     else if (k == "strict") o.strict = v.cast<bool>();
-    else if (k == "contours") o.sunnybrook_contours = v.cast<std::string>();
     else throw InvalidInput(ErrorCode::Usage, Location{}, "unknown option " + k + "=");
   }
   return o;
@@ -236,16 +235,10 @@ ReconstructRunOptions run_options(py::kwargs& kw) {
   take("frame", o.frame);
   take("edge", o.edge);
   take("cap", o.cap);
-  take("cap_fill", o.cap_fill);
   take("method", o.method);
   take("threads", o.threads);
-  take("pin_spacing", o.pin_spacing);
   take("vertical_deformation", o.vertical);
-  take("biharmonic", o.biharmonic);
-  take("fast", o.fast);
-  take("no_rows", o.no_rows);
   take("tiling", o.tiling);
-  take("remesher", o.remesher);
   take("volume_tolerance", o.volume_tolerance);
   return o;
 }
@@ -382,14 +375,13 @@ PYBIND11_MODULE(contour4d, m) {
         "Reads any supported input (contour JSON, GPFile folder, Sunnybrook folder, label images; or a list of contour\n"
         "dicts) into {'contours': [{'frame', 'slice', 'label', 'offset_mm', 'time_ms', 'points': (n, 3)}], 'timing',\n"
         "'repairs', 'notes', 'format', 'space', 'stack_normal', 'frames'}.\n"
-        "Options as `contour4d reconstruct`'s: type, label, labels, slice_axis, space, frame_ms, cycle_ms, strict,\n"
-        "contours ('endo', 'epi', 'both': Sunnybrook).");
+        "Options as `contour4d reconstruct`'s: type, label ('all': every structure), labels, slice_axis, space,\n"
+        "frame_ms, cycle_ms, strict.");
   m.def("reconstruct", &reconstruct, "input"_a, "output"_a = py::none(), "keep_failed"_a = py::none(), "format"_a = "vtp",
         "Reconstructs INPUT (a path, a list of contour dicts, or read()'s dict) as `contour4d reconstruct` does.\n"
         "Returns {'positions': (frames, vertices, 3), 'triangles': (n, 3), 'times_ms': (frames,), 'report': dict}.\n"
-        "With output= the same files as the command line are written there. Options: frame, edge, cap, cap_fill,\n"
-        "method, threads, volume_tolerance, pin_spacing, vertical_deformation, biharmonic, fast, no_rows, tiling,\n"
-        "remesher, and read()'s. A result that fails its checks raises SolverError (exit_code 26).");
+        "With output= the same files as the command line are written there. Options: frame, edge, cap, method,\n"
+        "threads, volume_tolerance, vertical_deformation, tiling, and read()'s. A result that fails its checks raises SolverError (exit_code 26).");
   m.def("evaluate", &evaluate_folder, "outdir"_a, "contours"_a = py::none(), "truth"_a = py::none(), "label"_a = "",
         "type"_a = std::vector<std::string>{}, "step"_a = 0.2, "sample_spacing"_a = 0.5, "self_intersections"_a = true,
         "json"_a = py::none(),

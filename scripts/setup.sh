@@ -4,7 +4,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config clang libclang-rt-14-dev
+  build-essential cmake ninja-build pkg-config clang clang-format libclang-rt-14-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev
   libinsighttoolkit5-dev libgdcm-tools

@@ -85,7 +85,7 @@ void add_evaluate_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_option("--truth", args->truth, "folder of ground-truth meshes (same layout); frame i compares with frame i");
   app->add_option("--json", args->json, "where to write the JSON report (default OUTDIR/evaluation.json)");
   app->add_option("--label", args->label, "use only the contours with this label");
-  app->add_option("--contour-type", args->contour_types, "GPFile contour types to read (default SAX_LV_ENDOCARDIAL)");
+  app->add_option("--type", args->contour_types, "GPFile contour types to read (repeatable; default SAX_LV_ENDOCARDIAL), as in reconstruct");
   app->add_option("--step", args->step, "contour sampling interval for conformity (mm)")->default_val(0.2)->check(CLI::PositiveNumber);
   app->add_option("--sample-spacing", args->spacing, "surface sample spacing for accuracy (mm)")
       ->default_val(0.5)

@@ -74,7 +74,9 @@ void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, 
 int run_structures(const ReconstructArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const MeshFormats formats = parse_mesh_formats(a.format);
-  const InputResult read = read_contours(a.input, a.in);  // every label
+  InputOptions in = a.in;
+  in.label = "all";  // every label (a Sunnybrook folder's epicardium too)
+  const InputResult read = read_contours(a.input, in);
   OutputDir out(a.output);
   print_input_summary(a, read);
   const std::vector<Structure> structures = split_structures(read, a.labels);
@@ -88,7 +90,10 @@ int run_structures(const ReconstructArgs& a) {
   ProgressBar bar;
   const std::vector<StructureRun> runs = reconstruct_structures(
       structures, a.input, a.run, [&bar](const char* stage, int done, int total) { bar.update(stage, done, total); },
-      [](const std::string& line) { std::cout << line << "\n" << std::flush; });
+      [&bar](const std::string& line) {
+        bar.finish();  // a message on its own line, the bar redrawn by the next update
+        std::cout << line << "\n" << std::flush;
+      });
   bar.finish();
   const auto failed = std::find_if(runs.begin(), runs.end(), [](const StructureRun& r) { return r.error_code != 0; });
   if (std::all_of(runs.begin(), runs.end(), [](const StructureRun& r) { return r.error_code != 0; }))
@@ -115,7 +120,7 @@ int run_structures(const ReconstructArgs& a) {
 int run_reconstruct(ReconstructArgs a) {
   if (a.labels.size() > 1 || (a.labels.size() == 1 && a.labels[0] == "all")) return run_structures(a);
   const bool wall = a.labels.size() == 1 && a.labels[0] == kLvWall;  // made from lv-endo and lv-epi
-  if (a.labels.size() == 1 && !wall) a.in.label = a.labels[0];
+  if (a.labels.size() == 1) a.in.label = wall ? "all" : a.labels[0];
   const auto t0 = std::chrono::steady_clock::now();
   const MeshFormats formats = parse_mesh_formats(a.format);  // a bad --format stops before the work
   InputResult read = read_contours(a.input, a.in);
@@ -130,7 +135,10 @@ int run_reconstruct(ReconstructArgs a) {
   ProgressBar bar;
   const ReconstructRun run = reconstruct_run(
       read, a.input, a.run, [&bar](const char* stage, int done, int total) { bar.update(stage, done, total); },
-      [](const std::string& line) { std::cout << line << "\n" << std::flush; });
+      [&bar](const std::string& line) {
+        bar.finish();  // a message on its own line, the bar redrawn by the next update
+        std::cout << line << "\n" << std::flush;
+      });
   bar.finish();
   write_run(out, run, formats, a.keep_failed);  // the output gate: nothing is written when a frame fails its checks
   print_result_summary(a, run.result, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -188,30 +196,6 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_flag("--vertical-deformation", args->run.vertical,
                 "Lim et al.'s sine-shaped vertical deformation where contours split or merge between frames (eq. 10, "
                 "a baseline)")
-      ->group(advanced);
-  app->add_option("--cap-fill", args->run.cap_fill,
-                  "rounded caps on ends that keep their size are filled towards the trend of the last two sections, "
-                  "up to this fraction of the half-spacing prism (0: plain faired domes)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0))
-      ->group(advanced);
-  app->add_option("--pin-spacing", args->run.pin_spacing,
-                  "> 0: also hold frame-0 contour vertices on later contours, at least this x the median edge apart")
-      ->capture_default_str()
-      ->group(advanced);
-  app->add_flag("--biharmonic", args->run.biharmonic,
-                "frames whose contours all match the previous frame's one-to-one follow them by one biharmonic "
-                "solve, unless that fails the quality guard")
-      ->group(advanced);
-  app->add_option("--remesher", args->run.remesher,
-                  "isotropic remeshing: auto (default), cgal (CGAL's) or fast (ours, on flat arrays)")
-      ->check(CLI::IsMember({"auto", "cgal", "fast"}))
-      ->capture_default_str()
-      ->group(advanced);
-  app->add_flag("--fast", args->run.fast, "all frames: frame 0 by interpolated rows too (faster, less even triangles)")
-      ->group(advanced);
-  app->add_flag("--no-rows", args->run.no_rows,
-                "remesh every band between slices instead of interpolated rows (slower, slightly more even triangles)")
       ->group(advanced);
   app->add_option("--keep-failed", args->keep_failed,
                   "a result that fails its checks exits with code 26 and writes nothing; this writes it to DIR, "

@@ -8,19 +8,20 @@
 
 namespace c4d::cli {
 
-//! Adds --type, --label, --labels, --slice-axis, --space, --frame-ms, --cycle-ms and --contours, filling `o`.
+//! Adds --type, --label, --labels, --slice-axis, --space, --frame-ms, --cycle-ms and --strict, filling `o`.
 //! With `labels`, --label is repeatable and may be "all" (reconstruct: several structures in one run).
 inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::string>* labels = nullptr) {
   app->add_option("--type", o.contour_types,
                   "GPFile contour types to keep (repeatable; default SAX_LV_ENDOCARDIAL), e.g. SAX_LV_EPICARDIAL");
   if (labels)
     app->add_option("--label", *labels,
-                    "structure: a contour label (lv-endo), or for label images a number (3) or a preset name (lv); "
+                    "structure: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name (lv); "
                     "repeatable, or all: every structure (and lv-wall, the myocardium, from lv-endo inside lv-epi), "
                     "each into OUTDIR/<label>/");
   else
     app->add_option("--label", o.label,
-                    "structure to keep: a contour label (lv-endo), or for label images a number (3) or a preset name (lv)");
+                    "structure to keep: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name "
+                    "(lv); all: every structure (Sunnybrook folders give lv-endo unless asked)");
   app->add_option("--labels", o.label_preset, "label-image preset naming the labels: acdc (RV=1, MYO=2, LV=3) or mnms (LV=1, MYO=2, RV=3)")
       ->check(CLI::IsMember({"acdc", "mnms"}));
   app->add_option("--slice-axis", o.slice_axis, "label images: voxel axis 0, 1 or 2 along which slices are stacked "
@@ -38,8 +39,6 @@ inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::s
   app->add_flag("--strict", o.strict,
                 "refuse flawed contours (open arcs, loops, spikes, too few points, two slice ids on one plane) with "
                 "their exit codes instead of repairing them (the default repairs each and lists it in the report)");
-  app->add_option("--contours", o.sunnybrook_contours, "Sunnybrook folders: endo (default), epi or both")
-      ->check(CLI::IsMember({"endo", "epi", "both"}));
 }
 
 }  // namespace c4d::cli

@@ -11,7 +11,7 @@ namespace c4d {
 void keep_freed_memory() {
 #if defined(__GLIBC__)
   // Blocks up to 256 MiB from the heap, and the heap trimmed only above 512 MiB free. Peak resident
-  // memory stays that of the largest simultaneous use (a one-frame surface: 72.6 -> 73.9 MB on biv-me).
+  // memory stays about that of the largest simultaneous use.
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
 #endif

@@ -2,6 +2,7 @@
 // _solve_impl and SparseCore/TriangularSolver.h), for the linear systems of the surface fairing, the 4D
 // morph's projection and the contour fit.
 #include "contour4d/core/sparse_solve.h"
+#include "sparse_solve_internal.h"
 
 #include <algorithm>
 #include <array>
@@ -112,7 +113,8 @@ Eigen::MatrixXd permuted_solve(const Eigen::SparseMatrix<double>& L, const Eigen
 
 }  // namespace
 
-Eigen::MatrixXd solve_ldlt(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& solver, const Eigen::MatrixXd& b) {
+Eigen::MatrixXd detail::solve_ldlt(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& solver,
+                                   const Eigen::MatrixXd& b) {
   return permuted_solve(solver.matrixL().nestedExpression(), solver.vectorD(), solver.permutationP(),
                         solver.permutationPinv(), b);
 }
@@ -173,9 +175,8 @@ void rows_below(double* y, const int* rows, int below, const double* const* colu
 // those rows: they are the chain's ancestors, later in the pattern. The chain's own rows (the dense
 // triangle of a supernode, most of the work at the top of the tree) are taken in blocks of rows the same
 // way: each block first gets the updates of the chain's columns before it, then its own columns'. Flops
-// stay the same; the index traffic and the scattered read-modify-writes of y go. The fairing's
-// factorisation with Eigen's loop, then with this one (symbolic and numeric, one core): biv-me frame 0
-// (19,234 unknowns, 2.0 M non-zeros in L) 199 -> 81 ms, the torus (19,354; 1.8 M) 194 -> 69 ms.
+// stay the same; the index traffic and the scattered read-modify-writes of y go (the fairing's factorisation
+// takes well under half of Eigen's loop's time).
 struct UpLooking {
   std::vector<int> parent, count;  // elimination tree; non-zeros per column of L (below the diagonal)
   std::vector<char> chain;         // column i's rows are {i + 1} and those of column i + 1
@@ -310,15 +311,32 @@ struct UpLooking {
 
 }  // namespace
 
-bool SparseLdlt::compute(const Eigen::SparseMatrix<double>& a) {
+SparseLdlt::SparseLdlt(int lanes) : factor_(std::make_unique<Factor>()), lanes_(lanes) {}
+SparseLdlt::~SparseLdlt() = default;
+SparseLdlt::SparseLdlt(SparseLdlt&&) noexcept = default;
+SparseLdlt& SparseLdlt::operator=(SparseLdlt&&) noexcept = default;
+
+int SparseLdlt::size() const { return static_cast<int>(factor_->d.size()); }
+
+std::pair<double, double> SparseLdlt::pivot_range() const {
+  const Eigen::VectorXd& d = factor_->d;
+  if (d.size() == 0) return {0.0, 0.0};
+  return {d.minCoeff(), d.maxCoeff()};
+}
+
+bool SparseLdlt::compute(const SparseLowerView& view) {
   using Sparse = Eigen::SparseMatrix<double>;
+  const Eigen::Map<const Sparse> a(view.n, view.n, view.n > 0 ? view.outer[view.n] : 0, view.outer, view.inner,
+                                   view.value);
   const Eigen::Index n = a.cols();
+  auto& p_ = factor_->p;
+  auto& pinv_ = factor_->pinv;
   // The full symmetric pattern of the lower triangle, each column sorted: column j gets the rows k < j
   // of the earlier columns that hold (j, k) (in increasing k), then its own entries i >= j (increasing).
   // Eigen's ordering step builds the same pattern as C + Cᵀ, C the full symmetric copy.
   std::vector<int> count(static_cast<std::size_t>(n) + 1, 0);
   for (Eigen::Index j = 0; j < n; ++j)
-    for (Sparse::InnerIterator it(a, j); it; ++it)
+    for (Eigen::Map<const Sparse>::InnerIterator it(a, j); it; ++it)
       if (it.row() >= j) {
         ++count[static_cast<std::size_t>(j) + 1];
         if (it.row() > j) ++count[static_cast<std::size_t>(it.row()) + 1];
@@ -332,7 +350,7 @@ bool SparseLdlt::compute(const Eigen::SparseMatrix<double>& a) {
     int* inner = symm.innerIndexPtr();
     double* value = symm.valuePtr();
     for (Eigen::Index j = 0; j < n; ++j)
-      for (Sparse::InnerIterator it(a, j); it; ++it) {
+      for (Eigen::Map<const Sparse>::InnerIterator it(a, j); it; ++it) {
         const auto i = static_cast<int>(it.row());
         if (i < j) continue;
         value[fill[static_cast<std::size_t>(j)]] = 0.0;
@@ -350,12 +368,15 @@ bool SparseLdlt::compute(const Eigen::SparseMatrix<double>& a) {
   ap.selfadjointView<Eigen::Upper>() = a.selfadjointView<Eigen::Lower>().twistedBy(p_);
   UpLooking factor;
   factor.analyze(ap);
-  ok_ = factor.factorize(ap, l_, d_, lanes_);
-  return ok_;
+  factor_->ok = factor.factorize(ap, factor_->l, factor_->d, lanes_);
+  return factor_->ok;
 }
 
-Eigen::MatrixXd SparseLdlt::solve(const Eigen::MatrixXd& b) const {
-  return permuted_solve(l_, d_, p_, pinv_, b, lanes_);
+void SparseLdlt::solve(const double* b, double* x, int columns) const {
+  const Eigen::Index n = factor_->d.size();
+  const Eigen::Map<const Eigen::MatrixXd> rhs(b, n, columns);
+  Eigen::Map<Eigen::MatrixXd>(x, n, columns) =
+      permuted_solve(factor_->l, factor_->d, factor_->p, factor_->pinv, Eigen::MatrixXd(rhs), lanes_);
 }
 
 }  // namespace c4d

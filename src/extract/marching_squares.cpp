@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <cstddef>
 
 namespace c4d {
@@ -147,7 +148,7 @@ std::vector<Vec2> fit_mask_staircase(const std::vector<Vec2>& chain, Vec2 sp, co
   const double px = std::min(sp.x, sp.y);
   const double floor_var = (0.02 * px) * (0.02 * px);  // no vertex pins the curve tighter than 0.02 px
   const double max_window = o.max_window_px * px;
-  const double cos_turn = std::cos(o.max_turn_deg * 3.14159265358979323846 / 180.0);
+  const double cos_turn = std::cos(o.max_turn_deg * std::numbers::pi / 180.0);
   // Tangents come from the current estimate of the curve; the first is a Taubin-smoothed staircase.
   std::vector<Vec2> cur = c, next(n), tan(n);
   smooth_closed_taubin(cur, 10);

@@ -4,6 +4,7 @@
 // sheet-aware projection onto the frame's own surface.
 #include "contour4d/motion/carry.h"
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include <algorithm>
@@ -187,7 +188,7 @@ void factor(const SparseMatrix& q, const std::vector<char>& fixed, ThinPlate& tp
   for (int i = 0; i < nf; ++i) lower.emplace_back(i, i, 1e-9);
   SparseMatrix a(nf, nf);
   a.setFromTriplets(lower.begin(), lower.end());
-  if (nf > 0 && !tp.ldlt.compute(a))
+  if (nf > 0 && !factor_lower(tp.ldlt, a))
     throw SolverError(ErrorCode::Internal, {}, "carry_frames: the thin-plate system cannot be factored");
 }
 
@@ -211,7 +212,7 @@ std::vector<Vec3> thin_plate_guess(const SparseMatrix& q, const ThinPlate& tp, c
   Eigen::MatrixXd rhs(nf, 3);
   for (std::size_t v = 0; v < x.size(); ++v)
     if (tp.column[v] >= 0) rhs.row(tp.column[v]) = -qd.row(static_cast<Eigen::Index>(v));
-  const Eigen::MatrixXd free = tp.ldlt.solve(rhs);
+  const Eigen::MatrixXd free = ldlt_solve(tp.ldlt, rhs);
   for (std::size_t v = 0; v < x.size(); ++v)
     if (tp.column[v] >= 0) {
       const auto r = tp.column[v];

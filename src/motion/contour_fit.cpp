@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -160,8 +161,8 @@ ContourFitReport fit_to_points(std::vector<Vec3>& x, const std::vector<Triangle>
       R(row, 2) = rhs[r].z;
     }
     SparseLdlt solver;
-    if (!solver.compute(M)) break;
-    const Eigen::MatrixXd D = solver.solve(Eigen::MatrixXd(A.transpose() * R));
+    if (!factor_lower(solver, M)) break;
+    const Eigen::MatrixXd D = ldlt_solve(solver, Eigen::MatrixXd(A.transpose() * R));
     if (!D.allFinite()) break;
     for (std::size_t v = 0; v < nv; ++v)
       if (col[v] >= 0) {

@@ -1,7 +1,7 @@
 // Lim et al. 2014, "Mesh Conformity" (the surface passes through every input contour), step 3c of our 4D
 // morph (morph.cpp): coarse or pixel-traced contours keep sharp corners (frame 0's resampling keeps them),
 // and a mesh whose vertices lie along the contour but not on the corner cuts it by up to a fraction of an
-// edge (biv-me's basal contours, 2–3 mm between points, turning by up to 117°).
+// edge (coarse real contours: a few mm between points, turning by up to about 120°).
 #include "contour4d/motion/corner_snap.h"
 
 #include <algorithm>

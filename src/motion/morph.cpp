@@ -25,6 +25,7 @@
 #include <map>
 #include <set>
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -733,13 +734,13 @@ struct BiharmonicStep {
       }
     }
     if (refactor) {
-      if (!solver.compute(M)) {
+      if (!factor_lower(solver, M)) {
         factored_for.clear();
         return false;
       }
       factored_for = signature;
     }
-    const Eigen::MatrixXd d = solver.solve(rhs);
+    const Eigen::MatrixXd d = ldlt_solve(solver, rhs);
     y.resize(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) {
       const auto r = static_cast<Eigen::Index>(i);
@@ -1003,7 +1004,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
           std::vector<Eigen::Triplet<double>> w;
           for (std::size_t i = 0; i < nv; ++i) w.emplace_back(static_cast<int>(i), static_cast<int>(i), pinned[i] ? pin_weight : 1.0);
           W.setFromTriplets(w.begin(), w.end());
-          if (!solver.compute(SparseMatrix(W + opt.stiffness * LtL)))
+          if (!factor_lower(solver, SparseMatrix(W + opt.stiffness * LtL)))
             throw SolverError(ErrorCode::Internal, Location{seq.source, -1, static_cast<int>(t)},
                               "failed to factor the deformation system");
           factored_for = pinned;
@@ -1013,7 +1014,7 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
           std::vector<Vec3> p = proj.project(x);
           for (std::size_t i = 0; i < nv; ++i)
             if (pinned[i]) p[i] = pin_weight * x[i];
-          x = from_matrix(solver.solve(to_matrix(p) + ref_term));
+          x = from_matrix(ldlt_solve(solver, Eigen::MatrixXd(to_matrix(p) + ref_term)));
           for (const auto& [v, q] : pins) x[v] = q;
         }
         // The normals of the landing triangles serve the first relaxation round (each round's closing

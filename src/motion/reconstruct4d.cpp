@@ -90,21 +90,12 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
     ahead[f] = project && (!options.morph.biharmonic || counts(f) != counts(f - 1));
   auto build = [&](std::size_t f) {
     SurfaceOptions so = options.surface;
-    if (f == 0 && !options.frame0_rows) {  // the carried mesh: remeshed bands, evenly spread
+    if (f == 0) {  // the carried mesh: remeshed bands, evenly spread, at the angle the morph keeps later
       so.rows = false;
-      so.remesher = options.frame0_remesher;
-    }
-    // The carried mesh starts at the angle the morph keeps in every later frame (its own repair's target).
-    if (f == 0) so.angle_repair.target_deg = options.morph.angle_repair.target_deg;
-    if (f > 0 && options.fast_targets) {
-      // Only the geometry of later frames is used (the morph projects onto it): no self-intersection test,
-      // and by default no small-angle repair (it was 40 % of these surfaces' time; the relaxation takes
-      // its tangent planes from the landing triangles, and the morph's own repair and retries keep its
-      // triangles: Reconstruct4DOptions::fast_target_repair_passes).
-      so.rows = true;
-      so.rows_final_remesh_iterations = 0;  // the projection needs the geometry, not even triangles
-      so.check_self_intersections = false;
-      so.angle_repair.passes = options.fast_target_repair_passes;
+      so.remesher = RemeshEngine::Fast;
+      so.angle_target_deg = options.morph.angle_repair.target_deg;
+    } else {
+      so.geometry_only = true;  // only the geometry of later frames is used: the morph projects onto it
     }
     return reconstruct_frame(seq, static_cast<int>(f), so, &rep.surfaces[f]);
   };
@@ -116,10 +107,8 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   std::vector<TriangleMesh> surfaces(n);
   std::vector<char> built(n, 0), taken(n, 0);
   std::vector<std::exception_ptr> errors(n);
-  std::mutex mutex;  // guards built, taken, errors, done and the progress callback
+  std::mutex mutex;  // guards built, taken and errors
   std::condition_variable ready;
-  int done = 0;
-  const int count = static_cast<int>(std::count(ahead.begin(), ahead.end(), 1));
   // Takes frame f if nobody has (or the next ahead frame when f < 0) and builds it; false if none was taken.
   auto take_and_build = [&](std::ptrdiff_t f) {
     std::size_t g = n;
@@ -146,13 +135,14 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
       surfaces[g] = std::move(mesh);
       errors[g] = error;
       built[g] = 1;
-      if (ahead[g] && options.progress) options.progress("surfaces", ++done, count);
     }
     ready.notify_all();
     return true;
   };
   // Frame t's surface, built here if nobody has taken it; waits for it otherwise.
+  // Called by the morph's thread only, frames in increasing order: frame t asked for, the frames before it done.
   const auto surface = [&](std::size_t t) -> const TriangleMesh& {
+    if (options.progress && t > 0) options.progress("frames", static_cast<int>(t) - 1, static_cast<int>(n) - 1);
     take_and_build(static_cast<std::ptrdiff_t>(t));
     std::unique_lock<std::mutex> lock(mutex);
     ready.wait(lock, [&] { return built[t] != 0; });
@@ -170,7 +160,6 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   std::exception_ptr morph_error;
   try {
     const TriangleMesh& frame0 = surface(0);
-    if (options.progress) options.progress("morph", 0, 1);
     out = morph_sequence(seq, frame0, surface, options.morph, &rep.morph);
   } catch (...) {
     morph_error = std::current_exception();
@@ -180,7 +169,7 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
   if (morph_error) std::rethrow_exception(morph_error);
-  if (options.progress) options.progress("morph", 1, 1);
+  if (options.progress && n > 1) options.progress("frames", static_cast<int>(n) - 1, static_cast<int>(n) - 1);
   return out;
 }
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <functional>
 #include <limits>
 #include <map>
@@ -25,7 +26,6 @@ namespace c4d {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 const Slice* find_slice(const Frame& f, int id) {
   for (const Slice& s : f.slices)
@@ -426,7 +426,7 @@ double vertical_displacement(const VerticalField& field, Vec3 p) {
   const double d = polyline_distance({dot(p, field.u), dot(p, field.v)}, field.ridge, false);
   if (d >= field.lambda) return 0.0;
   const double r = r_at(field, dot(p, field.normal));
-  return field.delta * (r / 2.0) * (std::sin(kPi * (2.0 * d + field.lambda) / (2.0 * field.lambda)) + 1.0);
+  return field.delta * (r / 2.0) * (std::sin(std::numbers::pi * (2.0 * d + field.lambda) / (2.0 * field.lambda)) + 1.0);
 }
 
 void apply_vertical_deformation(std::vector<Vec3>& positions, const VerticalField& field) {

@@ -75,14 +75,14 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
   if (fs::is_directory(input, ec) && is_sunnybrook_folder(input)) {
     SunnybrookOptions so;
     so.space = space;
-    so.contours = options.sunnybrook_contours == "epi"    ? SunnybrookContours::Epicardium
-                  : options.sunnybrook_contours == "both" ? SunnybrookContours::Both
-                                                          : SunnybrookContours::Endocardium;
+    so.contours = options.label == "lv-epi" ? SunnybrookContours::Epicardium
+                  : options.label == "all"  ? SunnybrookContours::Both
+                                            : SunnybrookContours::Endocardium;
     so.stack = options.stack;
     result = read_sunnybrook(input, so);
   } else if (is_label_image_input(input)) {
     MaskExtractOptions mo;
-    if (!options.label.empty()) mo.labels = {options.label};
+    if (!options.label.empty() && options.label != "all") mo.labels = {options.label};
     mo.preset = options.label_preset;
     mo.slice_axis = options.slice_axis;
     mo.space = space;
@@ -118,7 +118,7 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
     throw IoError(ErrorCode::Format, where, "unrecognised input (extension \"" + input.extension().string() + "\")",
                   kSupported);
   }
-  if (!options.label.empty()) {
+  if (!options.label.empty() && options.label != "all") {
     result.sequence = select_label(result.sequence, options.label);
     result.notes.push_back("label: only \"" + options.label + "\" kept");
   }
@@ -190,7 +190,7 @@ InputResult read_contour_list(std::vector<RawContour> contours, int frame_count,
   result.format = "contours-in-memory";
   if (!options.strict) result.repairs = repair_contours(contours);
   result.sequence = build_sequence(contours, frame_count, times_ms, source, options.stack);
-  if (!options.label.empty()) {
+  if (!options.label.empty() && options.label != "all") {
     result.sequence = select_label(result.sequence, options.label);
     result.notes.push_back("label: only \"" + options.label + "\" kept");
   }

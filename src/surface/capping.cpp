@@ -87,7 +87,7 @@ void mark_domain(CDT& cdt) {
 // Distance from a point to the nearest loop segment, through a grid of cells about one mean segment
 // long listing the segments whose bounding boxes meet them: rings of cells are searched outwards from
 // the point's cell until no closer segment can be left. The minimum of the same segment_distance values
-// as a scan of every segment, so the same bits (a cap of the torus: 6 000 points, 400 segments).
+// as a scan of every segment, so the same bits.
 class BoundaryDistance {
  public:
   explicit BoundaryDistance(const std::vector<std::vector<Vec2>>& loops) {
@@ -166,8 +166,8 @@ class BoundaryDistance {
 // CGAL's Delaunay_mesh_size_criteria_2 (the same shape test, bound 0.125) with a size bound that grows
 // with the distance of a triangle's centroid from the loops: `edge` within `near` edges of them,
 // `far` × edge beyond `ramp` edges, linear in between. The fairing solves for every cap point and its
-// cost grows faster than the point count on a 2D region (biv-me's basal cap: 6 800 points at a uniform
-// bound, more than half of the frame's factorisation flops), while only the rings next to the contour
+// cost grows faster than the point count on a 2D region (a large basal cap at a uniform bound takes more
+// than half of a frame's factorisation flops), while only the rings next to the contour
 // shape the surface across it; the final remeshing brings the interior back to `edge`.
 class GradedCriteria : public Criteria {
  public:

@@ -10,6 +10,7 @@
 // so that the slopes, not the steps, match across the contour (FairingOptions::scale_aware).
 #include "contour4d/surface/fairing.h"
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include <algorithm>
@@ -202,12 +203,12 @@ bool fair_thin_plate(TriangleMesh& mesh, const std::vector<char>& fixed, const s
   Eigen::MatrixXd rhs;
   normal_equations(trip, constant, rows, nf, a, rhs);
   SparseLdlt solver;
-  if (!solver.compute(a)) return false;
-  const Eigen::MatrixXd x = solver.solve(rhs);
+  if (!factor_lower(solver, a)) return false;
+  const Eigen::MatrixXd x = ldlt_solve(solver, rhs);
   if (!x.allFinite()) return false;
   // A singular system (a free part without fixed vertex) shows as a tiny pivot.
-  const auto d = solver.vectorD();
-  if (d.size() > 0 && d.minCoeff() <= 1e-12 * std::max(1.0, d.maxCoeff())) return false;
+  const auto [smallest, largest] = solver.pivot_range();
+  if (solver.size() > 0 && smallest <= 1e-12 * std::max(1.0, largest)) return false;
   for (std::size_t v = 0; v < nv; ++v)
     if (unknown[v] >= 0) mesh.positions[v] = {x(unknown[v], 0), x(unknown[v], 1), x(unknown[v], 2)};
   return true;

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <limits>
 #include <map>
@@ -29,14 +30,17 @@
 #include "contour4d/surface/mesh_check.h"
 #include "contour4d/surface/refine.h"
 #include "contour4d/surface/resample.h"
-#include "contour4d/surface/smoothing.h"
 #include "contour4d/metrics/surface_walk.h"
 #include "contour4d/surface/tiling.h"
+#include "surface_tuning_internal.h"
 
 namespace c4d {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+// Bridges of a 1→n branching rise this fraction of the gap from the several contours' slice; both sides
+// branching (n→m): two bridges meet in the band, each rises less.
+constexpr double kBridgeRise = 0.75;
+constexpr double kBridgeRiseBoth = 0.35;
 // CGAL's size bound, in edges, of the uniform interior of ring caps with walls (their fairing terms
 // scale-aware) and of the other caps that are not filled (lone contours and holes, rings without walls;
 // their rows scaled by its inverse).
@@ -229,7 +233,7 @@ std::vector<std::uint32_t> merge_with_bridges(const std::vector<int>& members, s
     for (int k = 1; k < pieces; ++k) {
       const double t = static_cast<double>(k) / pieces;
       const Vec2 r = p + t * (q - p);
-      bridge.push_back(b.add(from_plane(plane, r, lift * std::sin(kPi * t))));
+      bridge.push_back(b.add(from_plane(plane, r, lift * std::sin(std::numbers::pi * t))));
       bridge_2d.push_back(r);
     }
     std::vector<Vec2> other_2d = other.poly;
@@ -441,8 +445,8 @@ CapMesh cap_of_slice(const std::vector<std::vector<Vec2>>& loops, CapStyle style
 
 // The state of one frame's construction, filled step by step by reconstruct_frame's steps below.
 struct FrameWork {
-  explicit FrameWork(const SurfaceOptions& options) : opt(options) {}
-  const SurfaceOptions& opt;
+  explicit FrameWork(const detail::SurfaceParams& options) : opt(options) {}
+  const detail::SurfaceParams& opt;
   Location loc;                                  // the file and frame, for messages
   SurfaceReport rep;
   Sequence sub;                                  // the chosen structure's contours as a one-frame sequence
@@ -468,7 +472,7 @@ struct FrameWork {
 };
 
 // Step 1: the structure to build (SurfaceOptions::label, or the only one present).
-std::string choose_label(const Frame& f, const SurfaceOptions& opt, const Location& loc) {
+std::string choose_label(const Frame& f, const detail::SurfaceParams& opt, const Location& loc) {
   std::set<std::string> present;
   for (const Slice& s : f.slices)
     for (const Contour& c : s.contours) present.insert(c.label);
@@ -491,7 +495,7 @@ std::string choose_label(const Frame& f, const SurfaceOptions& opt, const Locati
 
 // Step 2: the structure's contours by slice offset, the connectivity tree's links and the canonical frame.
 void filter_frame(FrameWork& fw, const Sequence& seq, const Frame& f, const std::string& label) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& loc = fw.loc;
   auto& sub = fw.sub;
   auto& ff = fw.ff;
@@ -530,7 +534,7 @@ void filter_frame(FrameWork& fw, const Sequence& seq, const Frame& f, const std:
 
 // Step 3: canonical, resampled contours and their vertices, in a local frame.
 void canonical_contours(FrameWork& fw) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& rep = fw.rep;
   auto& sub = fw.sub;
   auto& ff = fw.ff;
@@ -723,7 +727,7 @@ void branch_groups(const std::vector<Node>& nodes, const std::vector<int>& lower
 // Step 5: the walls between connected contours: rows, bands, bridges at branchings, or the paper's
 // Delaunay tiling.
 void tile_walls(FrameWork& fw) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& rep = fw.rep;
   auto& ff = fw.ff;
   auto& b = fw.b;
@@ -759,10 +763,9 @@ void tile_walls(FrameWork& fw) {
                          tile_delaunay(fw, s, lower, upper, gap, dest);
       if (tiled) continue;
       // Bridge height above the slice of the several contours: the saddle where they join lies near
-      // the single contour's slice (measured on the idealized left heart, ED and ES: bridges at 0.75 of
-      // the gap put the faired saddle within 0.25–0.32 mm of the truth, at 0.5 within 0.65–0.79 mm).
-      // Both sides branching (n→m): two bridges meet in the band, each rises less.
-      const double rise = (both ? 0.35 : 0.75) * gap;
+      // the single contour's slice (kBridgeRise of the gap puts the faired saddle closer to analytic
+      // saddles than half the gap does; one_frame_surface.md).
+      const double rise = (both ? kBridgeRiseBoth : kBridgeRise) * gap;
       const auto lc = lower.size() == 1 ? nodes[lower[0]].chain
                                         : merge_with_bridges(lower, nodes, slices[s].plane, rise, opt.edge, b);
       const auto uc = upper.size() == 1 ? nodes[upper[0]].chain
@@ -798,7 +801,7 @@ void tile_walls(FrameWork& fw) {
 // Step 6: bands without rows (branchings) remeshed on their own; their borders are contours, which
 // stay fixed and unsplit, so the caps and the neighbouring bands still meet them edge to edge.
 void remesh_branch_bands(FrameWork& fw) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& b = fw.b;
   auto& nodes = fw.nodes;
   auto& contour_vertices = fw.contour_vertices;
@@ -856,7 +859,7 @@ void remesh_branch_bands(FrameWork& fw) {
 
 // Step 7: caps on contours without a partner above (top) or below (bottom).
 void add_caps(FrameWork& fw) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& loc = fw.loc;
   auto& rep = fw.rep;
   auto& ff = fw.ff;
@@ -910,16 +913,15 @@ void add_caps(FrameWork& fw) {
         bool lone = true;
         for (int g : group) lone = lone && !nodes[g].linked_up && !nodes[g].linked_down;
         // Rings (a contour with holes) keep their faired dome: its height is bound by the ring's width,
-        // and a straight extrapolation of the ring's area overshoots (torus: +2.4 % instead of −0.8 %).
+        // and a straight extrapolation of the ring's area overshoots.
         // Other Rounded caps are filled to the volume the sections' trend extrapolates (fill_cap).
         const bool fillable = opt.caps == CapStyle::Rounded && !lone && opt.cap_max_fill > 0 && group.size() == 1 && !lone_hole;
         // A coarser interior far from the contour: fewer unknowns for the fairing (CapOptions::far_scale).
         // Only on filled caps, whose volume the fill sets: a faired dome over a graded mesh comes out
-        // lower (the umbrella Laplacian weighs a coarse region's curvature more), the torus's rings by 3 %.
+        // lower (the umbrella Laplacian weighs a coarse region's curvature more).
         // The others get a uniform interior. Rings with walls: CGAL's bound 2 edges (mean edge about 1.4 edges; the
-        // final remeshing brings it back to `edge`) and scale-aware fairing terms (below); torus: 6 320,
-        // 3 288, 1 783 points per ring cap at bounds 1, √2, 2, the frame 164–167 -> 131–142 ms from √2 to
-        // 2 (one_frame_surface.md). Lone contours and holes, and rings without walls (their domes keep
+        // final remeshing brings it back to `edge`) and scale-aware fairing terms (below): about a quarter of
+        // the points of bound 1, the frame faster (one_frame_surface.md). Lone contours and holes, and rings without walls (their domes keep
         // their shape): bound √2 (mean edge about `edge`; bound 1 gave 0.7 edge) and their rows scaled by
         // 1/√2 (below).
         const bool ring = group.size() > 1 && !lone;
@@ -942,20 +944,18 @@ void add_caps(FrameWork& fw) {
           fixed.push_back(opt.caps == CapStyle::Flat ? 1 : 0);
           keep_shape.resize(b.positions.size(), 0);
           // A contour without wall (lone slice) has nothing to continue: its domes keep their shape.
-          keep_shape.back() = opt.caps == CapStyle::Rounded && (opt.cap_shape_weight > 0 || lone) ? 1 : 0;
+          keep_shape.back() = opt.caps == CapStyle::Rounded && lone ? 1 : 0;
           // The umbrella Laplacian of a vertex grows with its edges squared, so the energy per area of a
           // region grows with its edge length squared: rows of a coarser interior are scaled back by
-          // 1 / uniform_scale, keeping the dome's stiffness against the walls as at the bound of 1 edge
-          // (torus volume −1.15 % unscaled, −0.38 % scaled at bound √2; its rings are scale-aware now).
+          // 1 / uniform_scale, keeping the dome's stiffness against the walls as at the bound of 1 edge.
           if (cop.uniform_scale != 1.0 && !ring) {
             row_scale.resize(b.positions.size(), 1.0);
             row_scale.back() = 1.0 / cop.uniform_scale;
           }
         }
         // On a ring cap meshed coarser than the walls, the uniform umbrella matches the steps, not the
-        // slopes, across the contours: the dome comes out lower (torus volume −1.54 % at bound 2 even with
-        // its rows scaled by 1/2). Scale-aware terms on the interior and its contours
-        // (FairingOptions::scale_aware): −0.20 %.
+        // slopes, across the contours: the dome comes out lower, even with its rows scaled. Scale-aware terms
+        // on the interior and its contours (FairingOptions::scale_aware) restore its volume.
         if (ring && id.size() > loop_ids) {  // a ring cap is never filled
           scale_aware.resize(b.positions.size(), 0);
           for (std::uint32_t u : id) scale_aware[u] = 1;
@@ -986,7 +986,7 @@ void add_caps(FrameWork& fw) {
 // Step 8: the tiled surface faired and smoothed (free vertices), held within the caps' reach, its
 // domes and closing walls filled towards the sections' trend.
 TriangleMesh fair(FrameWork& fw, bool& manifold) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& rep = fw.rep;
   auto& b = fw.b;
   auto& nodes = fw.nodes;
@@ -1012,7 +1012,7 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
   bool moved = false;
   if (manifold && opt.fairing) {
     FairingOptions fo;
-    fo.shape_weight = opt.cap_shape_weight > 0 ? opt.cap_shape_weight : 1.0;
+    fo.shape_weight = 1.0;
     if (!row_scale.empty()) {
       row_scale.resize(mesh.positions.size(), 1.0);
       fo.row_scale = std::move(row_scale);
@@ -1024,13 +1024,6 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
     }
     if (fair_thin_plate(mesh, fixed, keep_shape, fo)) moved = true;
     else rep.warnings.push_back("fairing failed (singular system); the surface is left unsmoothed");
-  }
-  if (manifold && opt.smoothing_iterations > 0) {
-    SmoothingOptions so;
-    so.iterations = opt.smoothing_iterations;
-    so.epsilon = opt.smoothing_epsilon;
-    smooth_lambda_mu_epsilon(mesh, fixed, so);
-    moved = true;
   }
   // No overshoot beyond the caps' height (at most half a spacing past the end contours).
   if (moved)
@@ -1047,7 +1040,7 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
 // Step 9: one isotropic remeshing of the faired surface with every contour edge kept; returns those
 // edges.
 std::vector<std::array<std::uint32_t, 2>> remesh_final(FrameWork& fw, TriangleMesh& mesh, bool manifold) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& nodes = fw.nodes;
   auto& engine = fw.engine;
   auto& fixed = fw.fixed;
@@ -1084,7 +1077,7 @@ std::vector<std::array<std::uint32_t, 2>> remesh_final(FrameWork& fw, TriangleMe
 // Step 10: the few thin triangles left: their free vertices moved within the surface.
 void repair_angles(FrameWork& fw, TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
                    bool manifold) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& fixed = fw.fixed;
   if (manifold && opt.angle_repair.passes > 0) {
     // Trial positions a fraction of an edge from their vertex: snapped by a walk over the surface
@@ -1109,7 +1102,7 @@ void repair_angles(FrameWork& fw, TriangleMesh& mesh, const std::vector<std::arr
 
 // Step 11: unused vertices dropped, back to world space, the final checks into the report.
 TriangleMesh finish(FrameWork& fw, TriangleMesh& mesh) {
-  const SurfaceOptions& opt = fw.opt;
+  const detail::SurfaceParams& opt = fw.opt;
   auto& rep = fw.rep;
   auto& world = fw.world;
   std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);
@@ -1141,7 +1134,23 @@ TriangleMesh finish(FrameWork& fw, TriangleMesh& mesh) {
 
 }  // namespace
 
-TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& opt, SurfaceReport* report) {
+namespace detail {
+
+SurfaceParams surface_params(const SurfaceOptions& options, const SurfaceTuning& tuning) {
+  SurfaceParams p;
+  static_cast<SurfaceOptions&>(p) = options;
+  static_cast<SurfaceTuning&>(p) = tuning;
+  p.angle_repair.target_deg = options.angle_target_deg;
+  if (options.geometry_only) {  // a projection target: the geometry, not even triangles or a report
+    p.rows = true;
+    p.rows_final_remesh_iterations = 0;
+    p.check_self_intersections = false;
+    p.angle_repair.passes = 0;
+  }
+  return p;
+}
+
+TriangleMesh reconstruct_frame_tuned(const Sequence& seq, int frame, const SurfaceParams& opt, SurfaceReport* report) {
   SurfaceReport rep;
   Location loc;
   loc.file = seq.source;
@@ -1172,6 +1181,12 @@ TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOpti
   TriangleMesh out = finish(fw, mesh);
   if (report) *report = std::move(fw.rep);
   return out;
+}
+
+}  // namespace detail
+
+TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& options, SurfaceReport* report) {
+  return detail::reconstruct_frame_tuned(seq, frame, detail::surface_params(options), report);
 }
 
 }  // namespace c4d

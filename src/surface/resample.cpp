@@ -6,13 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "contour4d/core/contour.h"
 
 namespace c4d {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 Vec2 area_centroid(const std::vector<Vec2>& p) {
   double a = 0.0;
@@ -133,7 +133,7 @@ std::vector<Vec2> resample_closed(const std::vector<Vec2>& polygon, const Resamp
     turning[i] = std::atan2(std::abs(cross(u, w)), dot(u, w));
     arm[i] = 0.5 * (nu + nw);
   }
-  const double turn_limit = std::clamp(options.corner_angle_deg, 0.0, 180.0) * kPi / 180.0;
+  const double turn_limit = std::clamp(options.corner_angle_deg, 0.0, 180.0) * std::numbers::pi / 180.0;
   auto local_maximum = [&](std::size_t i) {
     for (int dir : {-1, 1})
       for (std::size_t k = 1; k < n; ++k) {

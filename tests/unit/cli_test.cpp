@@ -56,18 +56,18 @@ TEST(Cli, MissingInputIsNamed) {
   EXPECT_NE(r.out.find("/nonexistent/contours.json"), std::string::npos) << r.out;
 }
 
-TEST(Cli, RemesherOptionReachesTheReport) {
-  const std::string dir = ::testing::TempDir() + "c4d-cli-remesher";
+TEST(Cli, TilingOptionReachesTheReport) {
+  const std::string dir = ::testing::TempDir() + "c4d-cli-tiling";
   ASSERT_EQ(run("phantom bifurcation -o " + dir + "/ph").code, 0);
-  const Result r = run("reconstruct " + dir + "/ph/contours.json --frame 0 --remesher fast -o " + dir + "/out");
+  const Result r = run("reconstruct " + dir + "/ph/contours.json --frame 0 --tiling delaunay -o " + dir + "/out");
   EXPECT_EQ(r.code, 0) << r.out;
   std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen((dir + "/out/report.json").c_str(), "r"), std::fclose);
   ASSERT_TRUE(f);
   std::string report;
   std::array<char, 4096> buf{};
   while (fgets(buf.data(), buf.size(), f.get())) report += buf.data();
-  EXPECT_NE(report.find("\"remesher\": \"fast\""), std::string::npos);
-  EXPECT_EQ(run("reconstruct " + dir + "/ph/contours.json --remesher bogus -o " + dir + "/never").code, 2);
+  EXPECT_NE(report.find("\"tiling\": \"delaunay\""), std::string::npos);
+  EXPECT_EQ(run("reconstruct " + dir + "/ph/contours.json --tiling bogus -o " + dir + "/never").code, 2);
 }
 
 // A result that fails the output checks: its own exit code, a message naming the frame and the fault,
@@ -155,7 +155,7 @@ TEST(Cli, EveryStructureInOneRun) {
   const std::string dir = ::testing::TempDir() + "c4d-cli-all";
   std::filesystem::remove_all(dir);
   const std::string sb = std::string(C4D_DATA_DIR) + "/sunnybrook-SC-HF-I-1";
-  const Result r = run("reconstruct " + sb + " --contours both --label all --threads 2 -o " + dir + "/out");
+  const Result r = run("reconstruct " + sb + " --label all --threads 2 -o " + dir + "/out");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("wall mass"), std::string::npos) << r.out;
   std::ifstream f(dir + "/out/report.json");
@@ -175,13 +175,13 @@ TEST(Cli, EveryStructureInOneRun) {
   }
   EXPECT_EQ(names, (std::vector<std::string>{"lv-endo", "lv-epi", "lv-wall"}));
   // The wall alone: one output folder whose summary holds the mass per frame.
-  const Result wall = run("reconstruct " + sb + " --contours both --label lv-wall -o " + dir + "/wall");
+  const Result wall = run("reconstruct " + sb + " --label lv-wall -o " + dir + "/wall");
   ASSERT_EQ(wall.code, 0) << wall.out;
   std::ifstream wf(dir + "/wall/report.json");
   const nlohmann::ordered_json wr = nlohmann::ordered_json::parse(wf);
   EXPECT_EQ(wr["summary"]["mass_g"].size(), wr["summary"]["volume_ml"].size());
   // A structure the input does not hold: refused before any work, nothing written.
-  const Result bad = run("reconstruct " + sb + " --contours both --label lv-endo --label rv -o " + dir + "/bad");
+  const Result bad = run("reconstruct " + sb + " --label lv-endo --label rv -o " + dir + "/bad");
   EXPECT_EQ(bad.code, 21) << bad.out;
   EXPECT_FALSE(std::filesystem::exists(dir + "/bad"));
   std::filesystem::remove_all(dir);

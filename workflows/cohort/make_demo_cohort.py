@@ -43,8 +43,7 @@ def main():
     data = Path(a.data)
     if not data.is_dir():
         raise SystemExit(f"make_demo_cohort: {data} is missing (../shared/data beside the checkout)")
-    rows = [{"subject": "sunnybrook-hf1", "input": str(data / "sunnybrook-SC-HF-I-1"), "structures": "lv-endo lv-wall",
-             "args": "--contours both"}]
+    rows = [{"subject": "sunnybrook-hf1", "input": str(data / "sunnybrook-SC-HF-I-1"), "structures": "lv-endo lv-wall"}]
     bivme_three_frames(a.contour4d, data, inputs / "bivme-patient1-3frames.json")
     rows.append({"subject": "bivme-patient1", "input": "inputs/bivme-patient1-3frames.json", "structures": "lv-endo"})
     for name, extra in (("left-heart", []), ("bifurcation", ["--frames", "4"])):

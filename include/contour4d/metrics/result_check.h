@@ -21,9 +21,8 @@ struct ResultCheckOptions {
   bool self_intersections = true;  //!< run the triangle-triangle intersection test (exact predicates)
   //! Largest |mesh volume / Simpson's volume − 1| accepted. Simpson's discs (area × slice thickness,
   //! half a gap beyond each end slice) and a smooth surface through the same contours differ by the caps
-  //! and the curvature between slices: −1.8 to +0.2 % on the bundled real data and the left-heart,
-  //! ellipsoid and bifurcation phantoms, −4.6 to +7.7 % on the torus (holes closing between slices),
-  //! −4.0 to −2.2 % on myocardium shells; a collapsed or inside-out frame is far out.
+  //! and the curvature between slices, a few percent (more where holes close between slices; measured
+  //! figures: docs/results.md); a collapsed or inside-out frame is far out.
   double volume_tolerance = 0.10;
 };
 

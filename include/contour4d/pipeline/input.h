@@ -14,12 +14,12 @@ namespace c4d {
 //! How to read an input.
 struct InputOptions {
   std::vector<std::string> contour_types;  //!< GPFile contour types to keep; empty = SAX_LV_ENDOCARDIAL
-  std::string label;                       //!< keep only this label (empty: all labels); for label images a
-                                           //!< number ("3") or a preset name ("lv")
+  std::string label;                       //!< keep only this label; for label images a number ("3") or a preset
+                                           //!< name ("lv"). Empty: every label, except that a Sunnybrook folder
+                                           //!< gives its endocardium (lv-endo); "all": every label of every format
   std::string label_preset;                //!< label images: "acdc", "mnms" or "" (labels named by number)
   int slice_axis = -1;                     //!< label images: voxel axis of the slices; -1: largest spacing
   std::string space = "LPS";               //!< output coordinates of DICOM-derived inputs: "LPS" or "RAS"
-  std::string sunnybrook_contours = "endo";  //!< Sunnybrook folders: "endo", "epi" or "both"
   StackOptions stack;                      //!< validation tolerances
   double frame_ms = 0.0;                   //!< time between frames (ms) for inputs without times of their own
                                            //!< (GPFile, label images); 0: not given

@@ -25,13 +25,13 @@ struct CapOptions {
   double near_edges = 2.0;  //!< interior triangles within this many edges of the loops are at most `edge` long
   double ramp_edges = 5.0;  //!< beyond this many edges from the loops the bound is far_scale × edge (linear in between)
   double far_scale = 3.0;   //!< size bound far from the loops, in edges (≤ 1 or not finite: uniform `edge`). A
-                            //!< coarser interior has fewer unknowns for the fairing (biv-me frame 0: 15 % less CPU);
+                            //!< coarser interior has fewer unknowns for the fairing;
                             //!< the final remeshing restores `edge`. reconstruct_frame uses 1 on rings, whose faired
                             //!< dome sets their volume
   double uniform_scale = 1.0;  //!< size bound of a uniform interior (far_scale ≤ 1), in edges. CGAL's bound caps
                                //!< each triangle's longest edge, so the mean edge comes out near 0.7 of it: √2
-                               //!< gives a mean near `edge`. reconstruct_frame uses √2 on rings (torus: 6 275 ->
-                               //!< 3 283 points per cap, the frame about 35 % faster)
+                               //!< gives a mean near `edge`. reconstruct_frame uses √2 on rings (about half the
+                               //!< points per cap)
 };
 
 //! A planar cap in plane coordinates plus a height per point.

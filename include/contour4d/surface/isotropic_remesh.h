@@ -2,8 +2,8 @@
 //! \file isotropic_remesh.h
 //! \brief Fast isotropic remeshing (Botsch & Kobbelt 2004) on flat arrays: the refinement step of
 //! Lim et al. 2014, "Surface Smoothing and Refinement". refine.h's remesh_isotropic calls it with
-//! RemeshOptions::engine = Fast (SurfaceOptions::remesher, `contour4d reconstruct --remesher fast`);
-//! CGAL's isotropic_remeshing stays the default.
+//! RemeshOptions::engine = Fast: the one-frame surface's rows and the 4D run's frame 0; CGAL's
+//! isotropic_remeshing remeshes the bands of one-frame runs without rows (the Delaunay tiling).
 
 #include <array>
 #include <cstdint>

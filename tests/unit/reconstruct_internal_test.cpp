@@ -14,6 +14,7 @@
 #include "contour4d/core/errors.h"
 #include "contour4d/pipeline/input.h"
 #include "contour4d/surface/mesh_check.h"
+#include "surface/surface_tuning_internal.h"
 
 namespace {
 
@@ -23,6 +24,17 @@ using c4d::Vec3;
 
 // A shape of slice z: a list of 2D polygons (CCW outer, any orientation accepted).
 using Polys = std::vector<std::vector<Vec2>>;
+
+// The library's surface, with the default tuning or with a step switched off (white-box: SurfaceTuning).
+c4d::TriangleMesh frame_of(const c4d::Sequence& seq, int frame, const c4d::SurfaceOptions& o,
+                           c4d::SurfaceReport* rep = nullptr) {
+  return c4d::reconstruct_frame(seq, frame, o, rep);
+}
+c4d::TriangleMesh frame_of(const c4d::Sequence& seq, int frame, const c4d::detail::SurfaceParams& p,
+                           c4d::SurfaceReport* rep = nullptr) {
+  return c4d::detail::reconstruct_frame_tuned(seq, frame, p, rep);
+}
+c4d::detail::SurfaceParams defaults() { return c4d::detail::surface_params({}); }
 using Shape = std::function<std::vector<std::vector<Vec2>>(double z)>;
 
 std::vector<Vec2> ellipse(double cx, double cy, double a, double b, int n, double wobble = 0.0) {
@@ -119,20 +131,20 @@ void expect_closed(const c4d::TriangleMesh& m, long euler, std::size_t component
   EXPECT_FALSE(c.self_intersects);
 }
 
-c4d::SurfaceOptions coarse() {
-  c4d::SurfaceOptions o;
+// The tiled surface as it is: no remeshing, no rows, no fairing.
+c4d::detail::SurfaceParams coarse() {
+  c4d::detail::SurfaceParams o = defaults();
   o.remesh = false;
   o.rows = false;
   o.fairing = false;
-  o.smoothing_iterations = 0;
   return o;
 }
 
 TEST(Reconstruct, CylinderIsClosedOutwardAndThroughTheContours) {
   const auto seq = stack(range(0, 20, 5), [](double) { return Polys{ellipse(0, 0, 10, 10, 63)}; });
-  for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+  for (const auto& opt : {coarse(), defaults()}) {
     c4d::SurfaceReport rep;
-    const auto m = c4d::reconstruct_frame(seq, 0, opt, &rep);
+    const auto m = frame_of(seq, 0, opt, &rep);
     expect_closed(m, 2, 1);
     EXPECT_TRUE(rep.closed);
     EXPECT_EQ(rep.caps, 2);
@@ -154,9 +166,9 @@ TEST(Reconstruct, CylinderIsClosedOutwardAndThroughTheContours) {
 TEST(Reconstruct, ContoursAreMeshEdges) {
   // Keep every input vertex (corner angle 0): conformity is exact.
   const auto seq = stack(range(0, 15, 5), [](double z) { return Polys{ellipse(0.2 * z, 0, 12 - 0.3 * z, 8, 70, 0.05)}; });
-  c4d::SurfaceOptions o;
+  c4d::detail::SurfaceParams o = defaults();
   o.corner_angle_deg = 0;
-  const auto m = c4d::reconstruct_frame(seq, 0, o);
+  const auto m = frame_of(seq, 0, o);
   expect_closed(m, 2, 1);
   EXPECT_LT(conformity_max(seq, m), 1e-9);
 }
@@ -167,7 +179,7 @@ TEST(Reconstruct, SphereStackVolume) {
     return Polys{ellipse(0, 0, std::sqrt(R * R - z * z), std::sqrt(R * R - z * z), 128)};
   });
   c4d::SurfaceReport rep;
-  const auto m = c4d::reconstruct_frame(seq, 0, {}, &rep);
+  const auto m = frame_of(seq, 0, c4d::SurfaceOptions{}, &rep);
   expect_closed(m, 2, 1);
   const double truth = 4.0 / 3.0 * M_PI * R * R * R;
   const double err = (c4d::signed_volume(m) - truth) / truth;
@@ -189,10 +201,10 @@ TEST(Reconstruct, BranchOneToTwoAndTwoToOne) {
   const Shape merge = [&](double z) { return split(15 - z); };
   for (const Shape& shape : {split, merge}) {
     const auto seq = stack(range(0, 15, 5), shape);
-    for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+    for (const auto& opt : {coarse(), defaults()}) {
       SCOPED_TRACE(opt.fairing ? "default options" : "coarse");
       c4d::SurfaceReport rep;
-      const auto m = c4d::reconstruct_frame(seq, 0, opt, &rep);
+      const auto m = frame_of(seq, 0, opt, &rep);
       for (const auto& pr : c4d::self_intersecting_pairs(m)) {
         for (std::uint32_t t : pr)
           for (auto v : m.triangles[t]) std::printf(" (%.3f %.3f %.3f)", m.positions[v].x, m.positions[v].y, m.positions[v].z);
@@ -215,7 +227,7 @@ TEST(Reconstruct, ContoursTouchingAtOnePointAreMovedApart) {
   };
   const auto seq = stack(range(0, 15, 5), shape);
   c4d::SurfaceReport rep;
-  const auto m = c4d::reconstruct_frame(seq, 0, c4d::SurfaceOptions{}, &rep);
+  const auto m = frame_of(seq, 0, c4d::SurfaceOptions{}, &rep);
   expect_closed(m, 2, 1);
   bool warned = false;
   for (const auto& w : rep.warnings) warned = warned || w.find("contours touch") != std::string::npos;
@@ -229,9 +241,9 @@ TEST(Reconstruct, StackOfAnnuliIsATorus) {
     std::reverse(hole.begin(), hole.end());
     return Polys{ellipse(0, 0, 18, 18, 96), hole};
   });
-  for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
+  for (const auto& opt : {coarse(), defaults()}) {
     c4d::SurfaceReport rep;
-    const auto m = c4d::reconstruct_frame(seq, 0, opt, &rep);
+    const auto m = frame_of(seq, 0, opt, &rep);
     expect_closed(m, 0, 1);  // genus 1
     EXPECT_EQ(rep.caps, 2);  // ring caps, top and bottom
   }
@@ -245,22 +257,22 @@ TEST(Reconstruct, HoleThatEndsGetsItsOwnCap) {
     return s;
   });
   c4d::SurfaceReport rep;
-  const auto m = c4d::reconstruct_frame(seq, 0, {}, &rep);
+  const auto m = frame_of(seq, 0, c4d::SurfaceOptions{}, &rep);
   expect_closed(m, 2, 1);
 }
 
 TEST(Reconstruct, SeparateStructuresAndSingleSlice) {
   const auto two = stack(range(0, 10, 5), [](double) { return Polys{ellipse(-30, 0, 8, 8, 40), ellipse(30, 0, 8, 8, 40)}; });
-  expect_closed(c4d::reconstruct_frame(two, 0, {}), 4, 2);
+  expect_closed(frame_of(two, 0, c4d::SurfaceOptions{}), 4, 2);
   const auto one = stack({0.0}, [](double) { return Polys{ellipse(0, 0, 10, 6, 50)}; });
-  expect_closed(c4d::reconstruct_frame(one, 0, {}), 2, 1);
+  expect_closed(frame_of(one, 0, c4d::SurfaceOptions{}), 2, 1);
 }
 
 TEST(Reconstruct, OpenCapsLeaveTheEndsOpen) {
   const auto seq = stack(range(0, 20, 5), [](double) { return Polys{ellipse(0, 0, 10, 10, 63)}; });
   c4d::SurfaceOptions o;
   o.caps = c4d::CapStyle::Open;
-  const auto m = c4d::reconstruct_frame(seq, 0, o);
+  const auto m = frame_of(seq, 0, o);
   const auto c = c4d::check_mesh(m);
   EXPECT_GT(c.boundary_edges, 0u);
   EXPECT_EQ(c.nonmanifold_edges, 0u);
@@ -306,8 +318,8 @@ c4d::Sequence irregular_ring() {
 
 TEST(Reconstruct, InvariantToStartPointOrientationAndSliceOrder) {
   for (const auto& seq : {irregular(), irregular_ring()}) {
-    for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
-      const auto ref = c4d::reconstruct_frame(seq, 0, opt);
+    for (const auto& opt : {coarse(), defaults()}) {
+      const auto ref = frame_of(seq, 0, opt);
       expect_closed(ref, seq.frames[0].slices[0].contours.size() == 2 ? 0 : 2, 1);  // the ring: genus 1
       auto moved = seq;
       for (auto& s : moved.frames[0].slices)
@@ -316,7 +328,7 @@ TEST(Reconstruct, InvariantToStartPointOrientationAndSliceOrder) {
           std::rotate(c.points.begin(), c.points.begin() + 11, c.points.end());
         }
       std::reverse(moved.frames[0].slices.begin(), moved.frames[0].slices.end());
-      expect_same_surface(ref, c4d::reconstruct_frame(moved, 0, opt), [](Vec3 q) { return q; });
+      expect_same_surface(ref, frame_of(moved, 0, opt), [](Vec3 q) { return q; });
     }
   }
 }
@@ -343,9 +355,9 @@ TEST(Reconstruct, InvariantToRigidMotion) {
       for (auto& ct : sl.contours)
         for (auto& p : ct.points) p = R(p) + t;
     }
-    for (const auto& opt : {coarse(), c4d::SurfaceOptions{}}) {
-      const auto ref = c4d::reconstruct_frame(seq, 0, opt);
-      const auto out = c4d::reconstruct_frame(moved, 0, opt);
+    for (const auto& opt : {coarse(), defaults()}) {
+      const auto ref = frame_of(seq, 0, opt);
+      const auto out = frame_of(moved, 0, opt);
       expect_same_surface(ref, out, [&](Vec3 q) { return Rinv(q - t); });
     }
   }
@@ -360,7 +372,7 @@ TEST(Reconstruct, Speed) {
   c4d::SurfaceOptions o;
   o.check_self_intersections = false;
   const auto t0 = std::chrono::steady_clock::now();
-  const auto m = c4d::reconstruct_frame(seq, 0, o);
+  const auto m = frame_of(seq, 0, o);
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("speed: %zu vertices in %.3f s = %.0f vertices/s\n", m.positions.size(), sec, m.positions.size() / sec);
   expect_closed(m, 2, 1);
@@ -368,15 +380,15 @@ TEST(Reconstruct, Speed) {
 
 TEST(Reconstruct, BadInputThrows) {
   c4d::Sequence empty;
-  EXPECT_THROW(c4d::reconstruct_frame(empty, 0, {}), c4d::InvalidInput);
+  EXPECT_THROW(frame_of(empty, 0, c4d::SurfaceOptions{}), c4d::InvalidInput);
   auto seq = stack({0.0, 5.0}, [](double) { return Polys{ellipse(0, 0, 5, 5, 20)}; });
   seq.frames[0].slices[1].contours[0].label = "rv";
-  EXPECT_THROW(c4d::reconstruct_frame(seq, 0, {}), c4d::InvalidInput);
+  EXPECT_THROW(frame_of(seq, 0, c4d::SurfaceOptions{}), c4d::InvalidInput);
   c4d::SurfaceOptions o;
   o.label = "rv";
-  expect_closed(c4d::reconstruct_frame(seq, 0, o), 2, 1);
+  expect_closed(frame_of(seq, 0, o), 2, 1);
   o.label = "la";
-  EXPECT_THROW(c4d::reconstruct_frame(seq, 0, o), c4d::InvalidInput);
+  EXPECT_THROW(frame_of(seq, 0, o), c4d::InvalidInput);
 }
 
 }  // namespace
@@ -449,7 +461,7 @@ TEST(ReconstructPhantoms, AccuracyVolumeAndQuality) {
         c4d::SurfaceOptions so;
         so.rows = rows;
         c4d::SurfaceReport rep;
-        const auto m = c4d::reconstruct_frame(ph.contours, 0, so, &rep);
+        const auto m = frame_of(ph.contours, 0, so, &rep);
         const Accuracy a = accuracy(ph, m, !oblique);
         std::printf("%-5s %-14s %-7s: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 %.1f %%, "
                     "<25: %.3f %%, min %.1f deg, conformity mean %.4f mm%s\n",
@@ -492,11 +504,11 @@ TEST(ReconstructPhantoms, AccuracyVolumeAndQuality) {
 TEST(ReconstructPhantoms, RowsPathIsClosedAndWellShaped) {
   auto check = [](const c4d::Sequence& seq, const std::string& name, long euler) {
     for (const c4d::RemeshEngine engine : {c4d::RemeshEngine::Cgal, c4d::RemeshEngine::Fast}) {
-      c4d::SurfaceOptions so;
+      c4d::detail::SurfaceParams so = defaults();
       so.rows = true;
       so.rows_remesher = engine;
       c4d::SurfaceReport rep;
-      const auto m = c4d::reconstruct_frame(seq, 0, so, &rep);
+      const auto m = frame_of(seq, 0, so, &rep);
       const Angles a = angles(m);
       SCOPED_TRACE(name + (engine == c4d::RemeshEngine::Fast ? " fast remesher" : " cgal"));
       std::printf("%-14s rows, %s: %6zu vertices, angles 40-80 %.1f %%, <25: %.4f %%, min %.1f deg\n", name.c_str(),
@@ -532,7 +544,7 @@ TEST(ReconstructPhantoms, DelaunayTilingGivesClosedSurfaces) {
       so.tiling = c4d::Tiling::Delaunay;
       so.rows = false;  // every band by the paper's tiling, not only the branchings
       c4d::SurfaceReport rep;
-      const auto m = c4d::reconstruct_frame(ph.contours, 0, so, &rep);
+      const auto m = frame_of(ph.contours, 0, so, &rep);
       const Accuracy a = accuracy(ph, m, false);
       SCOPED_TRACE(name + (oblique ? " oblique" : ""));
       std::printf("%-14s %-7s delaunay: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 "

@@ -1,5 +1,5 @@
-// solve_ldlt and SparseLdlt (core/sparse_solve.h) against Eigen's own SimplicialLDLT: bit-identical
-// factors and results.
+// solve_ldlt and SparseLdlt (core/sparse_solve.h, white-box: its factor in core/sparse_solve_internal.h)
+// against Eigen's own SimplicialLDLT: bit-identical factors and results.
 #include <cstring>
 #include <random>
 #include <vector>
@@ -7,11 +7,13 @@
 #include <gtest/gtest.h>
 
 #include "contour4d/core/sparse_solve.h"
+#include "core/sparse_solve_internal.h"
 
 namespace c4d {
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
+using detail::solve_ldlt;
 
 // I + w LᵀL for the umbrella Laplacian L of a g × g grid with random edge weights: symmetric positive
 // definite, with the bi-Laplacian's fill, as the 4D morph's projection system.
@@ -104,10 +106,10 @@ TEST(SparseSolve, SparseLdltIsSimplicialLdltBitForBit) {
     for (const Sparse* input : std::vector<const Sparse*>{&A, &lower, &skewed})
       for (int lanes : {0, 1, 2, 4}) {  // the chains' updates at every SIMD width, and Eigen's loop alone
         SparseLdlt ours(lanes);
-        ASSERT_TRUE(ours.compute(*input));
-        EXPECT_TRUE(same_bits(Eigen::MatrixXd(ours.vectorD()), Eigen::MatrixXd(eigen.vectorD()))) << g << " " << lanes;
-        EXPECT_TRUE(same_bits(ours.solve(b), eigen.solve(b))) << g << " " << lanes;
-        EXPECT_TRUE(same_bits(ours.matrixL(), Sparse(eigen.matrixL().nestedExpression()))) << g << " " << lanes;
+        ASSERT_TRUE(factor_lower(ours, *input));
+        EXPECT_TRUE(same_bits(Eigen::MatrixXd(ours.factor().d), Eigen::MatrixXd(eigen.vectorD()))) << g << " " << lanes;
+        EXPECT_TRUE(same_bits(ldlt_solve(ours, b), eigen.solve(b))) << g << " " << lanes;
+        EXPECT_TRUE(same_bits(ours.factor().l, Sparse(eigen.matrixL().nestedExpression()))) << g << " " << lanes;
       }
     // The factor itself: SimplicialLDLT with the natural ordering on the permuted matrix (what SparseLdlt
     // runs) has the factor of SimplicialLDLT with AMD.
@@ -124,7 +126,7 @@ TEST(SparseSolve, SparseLdltIsSimplicialLdltBitForBit) {
   bad.insert(1, 1) = 4.0;
   SparseLdlt ours;
   const Eigen::SimplicialLDLT<Sparse> eigen(bad);
-  EXPECT_EQ(ours.compute(bad), eigen.info() == Eigen::Success);
+  EXPECT_EQ(factor_lower(ours, bad), eigen.info() == Eigen::Success);
 }
 
 }  // namespace
