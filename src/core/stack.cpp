@@ -95,38 +95,11 @@ ContourInfo measure(const RawContour& rc, const std::string& source, const Stack
   return info;
 }
 
-}  // namespace
-
-Plane slice_plane(const Sequence& seq, const Slice& s) {
-  Plane pl;
-  pl.origin = s.offset * seq.normal;
-  pl.normal = seq.normal;
-  pl.u = seq.u;
-  pl.v = seq.v;
-  return pl;
-}
-
-Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count, const std::vector<double>& times_ms,
-                        const std::string& source, const StackOptions& options) {
-  Location file_loc;
-  file_loc.file = source;
-  if (frame_count <= 0)
-    throw InvalidInput(ErrorCode::EmptyFrame, file_loc, "the input has no frames", "give at least one frame of contours");
-  if (!times_ms.empty() && times_ms.size() != static_cast<std::size_t>(frame_count))
-    throw InvalidInput(ErrorCode::Internal, file_loc, "build_sequence: times_ms does not match frame_count");
-  for (const RawContour& rc : contours)
-    if (rc.frame < 0 || rc.frame >= frame_count)
-      throw InvalidInput(ErrorCode::Internal, where_of(rc, source), "build_sequence: frame index out of range");
-
-  // 1. Each contour on its own: finite, a real polygon.
-  std::vector<ContourInfo> info;
-  info.reserve(contours.size());
-  for (const RawContour& rc : contours) info.push_back(measure(rc, source, options));
-
-  // 2. Stack normal: area-weighted mean of the contour normals, each flipped into the hemisphere of
-  //    the largest contour (input orientation is free).
+// 2. Stack normal: area-weighted mean of the contour normals, each flipped into the hemisphere of
+//    the largest contour (input orientation is free); +z when there is no contour.
+Vec3 stack_normal(const std::vector<ContourInfo>& info) {
   Vec3 normal;
-  if (!contours.empty()) {
+  if (!info.empty()) {
     std::size_t ref = 0;
     for (std::size_t i = 1; i < info.size(); ++i)
       if (norm(info[i].area_vector) > norm(info[ref].area_vector)) ref = i;
@@ -136,10 +109,14 @@ Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count
   } else {
     normal = {0, 0, 1};
   }
+  return normal;
+}
 
-  // 3. Every contour parallel to the stack. A small contour may tilt by more than the angle
-  //    tolerance while staying within plane_tolerance of its plane; only a tilt that moves its
-  //    points off the plane is an error, and the coplanarity check below catches the rest.
+// 3. Throws for a contour not parallel to the stack. A small contour may tilt by more than the
+//    angle tolerance while staying within plane_tolerance of its plane; only a tilt that moves its
+//    points off the plane is an error, and the coplanarity check catches the rest.
+void check_parallel(const std::vector<RawContour>& contours, const std::vector<ContourInfo>& info, Vec3 normal,
+                    const std::string& source, const StackOptions& options) {
   const double cos_tol = std::cos(options.parallel_tolerance_deg * std::numbers::pi / 180.0);
   for (std::size_t i = 0; i < contours.size(); ++i) {
     const Vec3 n = normalized(info[i].area_vector);
@@ -156,8 +133,11 @@ Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count
                          "short-axis contour types)");
     }
   }
+}
 
-  // 4. Simple polygons, tested in the shared in-plane frame.
+// 4. Throws for a contour that is not a simple polygon, tested in the shared in-plane frame.
+void check_simple(const std::vector<RawContour>& contours, const std::vector<ContourInfo>& info, Vec3 normal,
+                  const std::string& source) {
   const Plane axes = make_plane({0, 0, 0}, normal);
   for (std::size_t i = 0; i < contours.size(); ++i) {
     std::vector<Vec2> q;
@@ -167,40 +147,59 @@ Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count
       throw InvalidInput(ErrorCode::SelfIntersection, where_of(contours[i], source), "contour crosses itself",
                          "fix the contour so its edges do not cross or touch");
   }
+}
 
-  // 5. One plane per slice id, in every frame: all points within plane_tolerance of one offset.
-  struct Range {
-    double lo = std::numeric_limits<double>::infinity();
-    double hi = -std::numeric_limits<double>::infinity();
-    void add(double d) { lo = std::min(lo, d); hi = std::max(hi, d); }
-    double mid() const { return 0.5 * (lo + hi); }
-  };
+//! The range of offsets along the stack normal (mm).
+struct Range {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double d) { lo = std::min(lo, d); hi = std::max(hi, d); }
+  double mid() const { return 0.5 * (lo + hi); }
+};
+
+//! The offsets of each slice's points, over all frames and per frame.
+struct SliceRanges {
   std::map<int, Range> slice_range;                   // over all frames
   std::map<std::pair<int, int>, Range> frame_range;  // (slice, frame)
+};
+
+// The offset ranges of every slice id, over all frames and per frame.
+SliceRanges slice_ranges(const std::vector<RawContour>& contours, const std::vector<ContourInfo>& info, Vec3 normal) {
+  SliceRanges r;
   for (std::size_t i = 0; i < contours.size(); ++i) {
     const int id = contours[i].contour.slice;
     for (const Vec3& p : info[i].points) {
       const double d = dot(p, normal);
-      slice_range[id].add(d);
-      frame_range[{id, contours[i].frame}].add(d);
+      r.slice_range[id].add(d);
+      r.frame_range[{id, contours[i].frame}].add(d);
     }
   }
-  auto worst_contour = [&](int id, int frame, double mid) {
-    std::size_t worst = 0;
-    double dev = -1;
-    for (std::size_t i = 0; i < contours.size(); ++i) {
-      if (contours[i].contour.slice != id || (frame >= 0 && contours[i].frame != frame)) continue;
-      for (const Vec3& p : info[i].points)
-        if (std::abs(dot(p, normal) - mid) > dev) {
-          dev = std::abs(dot(p, normal) - mid);
-          worst = i;
-        }
-    }
-    return worst;
-  };
-  for (const auto& [key, r] : frame_range) {
+  return r;
+}
+
+// The contour of slice `id` (in `frame`, any frame when < 0) with the point farthest from offset mid.
+std::size_t worst_contour(const std::vector<RawContour>& contours, const std::vector<ContourInfo>& info, Vec3 normal,
+                          int id, int frame, double mid) {
+  std::size_t worst = 0;
+  double dev = -1;
+  for (std::size_t i = 0; i < contours.size(); ++i) {
+    if (contours[i].contour.slice != id || (frame >= 0 && contours[i].frame != frame)) continue;
+    for (const Vec3& p : info[i].points)
+      if (std::abs(dot(p, normal) - mid) > dev) {
+        dev = std::abs(dot(p, normal) - mid);
+        worst = i;
+      }
+  }
+  return worst;
+}
+
+// 5. Throws unless each slice id is one plane in every frame: all points within plane_tolerance of one offset.
+void check_slice_planes(const std::vector<RawContour>& contours, const std::vector<ContourInfo>& info, Vec3 normal,
+                        const SliceRanges& ranges, const Location& file_loc, const StackOptions& options) {
+  const std::string& source = file_loc.file;
+  for (const auto& [key, r] : ranges.frame_range) {
     if (r.hi - r.lo > 2 * options.plane_tolerance) {
-      const std::size_t w = worst_contour(key.first, key.second, r.mid());
+      const std::size_t w = worst_contour(contours, info, normal, key.first, key.second, r.mid());
       throw InvalidInput(ErrorCode::NotCoplanar, where_of(contours[w], source),
                          "the points of slice " + std::to_string(key.first) + " spread " + mm(r.hi - r.lo) +
                              " along the stack normal (tolerance " + mm(2 * options.plane_tolerance) +
@@ -208,12 +207,12 @@ Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count
                          "each slice id must name one plane; give contours of different planes different slice ids");
     }
   }
-  for (const auto& [id, r] : slice_range) {
+  for (const auto& [id, r] : ranges.slice_range) {
     if (r.hi - r.lo > 2 * options.plane_tolerance) {
       // Within each frame the slice is planar, so the plane moves from frame to frame.
       int f_lo = -1, f_hi = -1;
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const auto& [key, fr] : frame_range) {
+      for (const auto& [key, fr] : ranges.frame_range) {
         if (key.first != id) continue;
         if (fr.mid() < lo) { lo = fr.mid(); f_lo = key.second; }
         if (fr.mid() > hi) { hi = fr.mid(); f_hi = key.second; }
@@ -228,8 +227,13 @@ Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count
                          "a slice id must name the same plane in every frame");
     }
   }
+}
 
-  // 6. Sign of the normal: slice offsets increase with slice id (the first and last ids decide).
+// 6. Sign of the normal: slice offsets increase with slice id (the first and last ids decide);
+//    flips `normal` and the ranges when they do not. Returns (offset, id) sorted by offset and
+//    throws where two slice ids lie on one plane.
+std::vector<std::pair<double, int>> order_slices(Vec3& normal, std::map<int, Range>& slice_range, const Location& file_loc,
+                                                 const StackOptions& options) {
   if (slice_range.size() >= 2 && slice_range.rbegin()->second.mid() < slice_range.begin()->second.mid()) {
     normal = -normal;
     for (auto& [id, r] : slice_range) r = {-r.hi, -r.lo};
@@ -248,10 +252,16 @@ Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count
                          "give contours of one plane the same slice id");
     }
   }
+  return order;
+}
 
-  // 7. Assemble frames; every frame needs a contour.
+// 7. Assembles the frames (contours take their cleaned points from info); throws for a frame
+//    without contours. Slices are sorted by offset within each frame.
+Sequence assemble_frames(const std::vector<RawContour>& contours, std::vector<ContourInfo>& info, int frame_count,
+                         const std::vector<double>& times_ms, const Location& file_loc, Vec3 normal,
+                         const std::vector<std::pair<double, int>>& order) {
   Sequence seq;
-  seq.source = source;
+  seq.source = file_loc.file;
   const Plane final_axes = make_plane({0, 0, 0}, normal);
   seq.normal = final_axes.normal;
   seq.u = final_axes.u;
@@ -289,6 +299,43 @@ Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count
                      [](const Slice& a, const Slice& b) { return a.offset < b.offset; });
   }
   return seq;
+}
+
+}  // namespace
+
+Plane slice_plane(const Sequence& seq, const Slice& s) {
+  Plane pl;
+  pl.origin = s.offset * seq.normal;
+  pl.normal = seq.normal;
+  pl.u = seq.u;
+  pl.v = seq.v;
+  return pl;
+}
+
+Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count, const std::vector<double>& times_ms,
+                        const std::string& source, const StackOptions& options) {
+  Location file_loc;
+  file_loc.file = source;
+  if (frame_count <= 0)
+    throw InvalidInput(ErrorCode::EmptyFrame, file_loc, "the input has no frames", "give at least one frame of contours");
+  if (!times_ms.empty() && times_ms.size() != static_cast<std::size_t>(frame_count))
+    throw InvalidInput(ErrorCode::Internal, file_loc, "build_sequence: times_ms does not match frame_count");
+  for (const RawContour& rc : contours)
+    if (rc.frame < 0 || rc.frame >= frame_count)
+      throw InvalidInput(ErrorCode::Internal, where_of(rc, source), "build_sequence: frame index out of range");
+
+  // 1. Each contour on its own: finite, a real polygon.
+  std::vector<ContourInfo> info;
+  info.reserve(contours.size());
+  for (const RawContour& rc : contours) info.push_back(measure(rc, source, options));
+
+  Vec3 normal = stack_normal(info);
+  check_parallel(contours, info, normal, source, options);
+  check_simple(contours, info, normal, source);
+  SliceRanges ranges = slice_ranges(contours, info, normal);
+  check_slice_planes(contours, info, normal, ranges, file_loc, options);
+  const std::vector<std::pair<double, int>> order = order_slices(normal, ranges.slice_range, file_loc, options);
+  return assemble_frames(contours, info, frame_count, times_ms, file_loc, normal, order);
 }
 
 std::vector<std::string> labels(const Sequence& seq) {

@@ -132,140 +132,201 @@ void smooth_closed_taubin(std::vector<Vec2>& polyline, int passes, double lambda
   }
 }
 
-std::vector<Vec2> fit_mask_staircase(const std::vector<Vec2>& chain, Vec2 sp, const StaircaseFitOptions& o) {
+namespace {
+
+// The staircase and what is known of each vertex: its position (mm), the direction of its grid
+// edge and the variance of the true crossing along that edge (mm²); and the fit's limits.
+struct Staircase {
+  std::vector<Vec2> c, e;
+  std::vector<double> var_along;
+  double floor_var = 0.0;   // no vertex pins the curve tighter than this (mm²)
+  double max_window = 0.0;  // largest half-window (mm of arc)
+  double cos_turn = 0.0;    // the window stops where the tangent has turned this much
+};
+
+// The chain in mm, with each vertex's edge direction and uncertainty.
+Staircase staircase(const std::vector<Vec2>& chain, Vec2 sp) {
   const std::size_t n = chain.size();
-  std::vector<Vec2> c(n), e(n);
-  std::vector<double> var_along(n);
+  Staircase s;
+  s.c.resize(n);
+  s.e.resize(n);
+  s.var_along.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    c[i] = {chain[i].x * sp.x, chain[i].y * sp.y};
+    s.c[i] = {chain[i].x * sp.x, chain[i].y * sp.y};
     // On a 0/1 field every crossing is an edge midpoint: x is whole on vertical edges.
     const bool vertical = chain[i].x == std::floor(chain[i].x);
-    e[i] = vertical ? Vec2{0, 1} : Vec2{1, 0};
+    s.e[i] = vertical ? Vec2{0, 1} : Vec2{1, 0};
     const double half = 0.5 * (vertical ? sp.y : sp.x);
-    var_along[i] = half * half / 3.0;  // uniform over the edge
+    s.var_along[i] = half * half / 3.0;  // uniform over the edge
   }
-  if (n < 5) return c;
-  const double px = std::min(sp.x, sp.y);
-  const double floor_var = (0.02 * px) * (0.02 * px);  // no vertex pins the curve tighter than 0.02 px
-  const double max_window = o.max_window_px * px;
-  const double cos_turn = std::cos(o.max_turn_deg * std::numbers::pi / 180.0);
-  // Tangents come from the current estimate of the curve; the first is a Taubin-smoothed staircase.
-  std::vector<Vec2> cur = c, next(n), tan(n);
-  smooth_closed_taubin(cur, 10);
+  return s;
+}
+
+// Unit tangents of the closed polyline cur (central differences).
+void tangents(const std::vector<Vec2>& cur, std::vector<Vec2>& tan) {
+  const std::size_t n = cur.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec2 t = cur[(i + 1) % n] - cur[(i + n - 1) % n];
+    const double len = norm(t);
+    tan[i] = len > 0 ? (1.0 / len) * t : Vec2{1, 0};
+  }
+}
+
+// The fit window around vertex i (i first): each side until `informative` vertices whose edge runs
+// more along the curve than across it, the arc length reaches max_window or the curve turns too much.
+void fit_window(const Staircase& s, const std::vector<Vec2>& cur, const std::vector<Vec2>& tan, std::size_t i,
+                int informative, std::vector<std::size_t>& window) {
+  const std::size_t n = cur.size();
   const auto sn = static_cast<std::ptrdiff_t>(n);
-  auto wrap = [sn](std::ptrdiff_t i) { return static_cast<std::size_t>((i % sn + sn) % sn); };
+  auto wrap = [sn](std::ptrdiff_t k) { return static_cast<std::size_t>((k % sn + sn) % sn); };
+  const Vec2 t = tan[i];
+  window.assign(1, i);
+  for (int dir = -1; dir <= 1; dir += 2) {
+    int count = 0;
+    double arc = 0;
+    Vec2 prev = cur[i];
+    for (std::ptrdiff_t k = 1; k < static_cast<std::ptrdiff_t>(n / 2); ++k) {
+      const std::size_t j = wrap(static_cast<std::ptrdiff_t>(i) + dir * k);
+      arc += norm(cur[j] - prev);
+      prev = cur[j];
+      if (arc > s.max_window || dot(tan[j], t) < s.cos_turn) break;
+      window.push_back(j);
+      const Vec2 nj{-tan[j].y, tan[j].x};
+      if (std::abs(dot(s.e[j], nj)) < 0.7071) ++count;
+      if (count >= informative) break;
+    }
+  }
+}
+
+// A local fit v = Σ sol[m] u^m over the tangent frame (origin, t, nn) of a vertex.
+struct LocalFit {
+  Vec2 origin, t, nn;
+  double umax = 0;
+  double sol[4] = {0, 0, 0, 0};
+  double at(double u) const { return sol[0] + u * (sol[1] + u * (sol[2] + u * sol[3])); }
+  double slope(double u) const { return sol[1] + u * (2 * sol[2] + 3 * sol[3] * u); }
+};
+
+// Weighted least squares v = Σ sol[m] u^m (m <= nb - 1) over the window: each vertex counts by the
+// inverse of its uncertainty across the curve, which lies along its edge. Fills fit.umax and the
+// normal equations M (nb rows, right-hand side in column nb), in scaled powers (u / umax)^m.
+void normal_equations(const Staircase& s, const std::vector<Vec2>& tan, const std::vector<std::size_t>& window, int nb,
+                      LocalFit& fit, double (&M)[4][5]) {
+  double umax = 0;
+  for (std::size_t j : window) umax = std::max(umax, std::abs(dot(s.c[j] - fit.origin, fit.t)));
+  umax = 1.05 * umax + 1e-12;
+  fit.umax = umax;
+  for (std::size_t j : window) {
+    const Vec2 d = s.c[j] - fit.origin;
+    const double u = dot(d, fit.t), v = dot(d, fit.nn);
+    const Vec2 nj{-tan[j].y, tan[j].x};
+    const double en = dot(s.e[j], nj);
+    const double z = std::min(1.0, std::abs(u) / umax), k3 = 1 - z * z * z;
+    const double w = k3 * k3 * k3 / (s.var_along[j] * en * en + s.floor_var);
+    // Scaled powers (u / umax)^m keep the system well conditioned.
+    double bvec[4] = {1, u / umax, 0, 0};
+    for (int m = 2; m < 4; ++m) bvec[m] = bvec[m - 1] * bvec[1];
+    for (int aa = 0; aa < nb; ++aa) {
+      M[aa][nb] += w * bvec[aa] * v;
+      for (int bb = 0; bb < nb; ++bb) M[aa][bb] += w * bvec[aa] * bvec[bb];
+    }
+  }
+}
+
+// Solves M (Gaussian elimination with partial pivoting) into fit.sol, unscaled; false when singular.
+bool solve_fit(double (&M)[4][5], int nb, LocalFit& fit) {
+  const double scale = M[0][0];
+  for (int col = 0; col < nb; ++col) {
+    int piv = col;
+    for (int rr = col + 1; rr < nb; ++rr)
+      if (std::abs(M[rr][col]) > std::abs(M[piv][col])) piv = rr;
+    if (!(std::abs(M[piv][col]) > 1e-12 * scale)) return false;
+    for (int cc = 0; cc <= nb; ++cc) std::swap(M[col][cc], M[piv][cc]);
+    for (int rr = 0; rr < nb; ++rr) {
+      if (rr == col) continue;
+      const double fct = M[rr][col] / M[col][col];
+      for (int cc = col; cc <= nb; ++cc) M[rr][cc] -= fct * M[col][cc];
+    }
+  }
+  for (int m = 0; m < nb; ++m) {
+    double scale_m = 1;
+    for (int k = 0; k < m; ++k) scale_m *= fit.umax;
+    fit.sol[m] = M[m][nb] / M[m][m] / scale_m;
+  }
+  return true;
+}
+
+// The mask's own constraint: the boundary crosses each edge between its two pixel centres. A fit
+// that crosses the inner half of its window outside that is the wrong model there (a flat run next
+// to curved flanks, a sharp tip): false, and the window shrinks.
+bool fit_consistent(const Staircase& s, const std::vector<std::size_t>& window, const LocalFit& fit, double tolerance) {
+  for (std::size_t j : window) {
+    const Vec2 d = s.c[j] - fit.origin;
+    const double u = dot(d, fit.t), v = dot(d, fit.nn);
+    if (std::abs(u) > 0.6 * fit.umax) continue;
+    const double fu = fit.at(u);
+    const double slope = fit.slope(u);
+    const double denom = dot(s.e[j], fit.nn) - slope * dot(s.e[j], fit.t);
+    if (std::abs(denom) < 0.3) continue;  // an edge nearly along the curve bounds little
+    if (std::abs((fu - v) / denom) > std::sqrt(3.0 * s.var_along[j]) * (1 + tolerance)) return false;
+  }
+  return true;
+}
+
+// The new point of vertex i: where the fit crosses the vertex's own edge, kept between the edge's
+// two pixel centres (the mask says the boundary crosses there); for an edge nearly along the curve,
+// the fit's point over the vertex, kept within half an edge of the midpoint.
+Vec2 refit_point(const Staircase& s, std::size_t i, const LocalFit& fit) {
+  const Vec2 d = s.c[i] - fit.origin;
+  const double u = dot(d, fit.t), v = dot(d, fit.nn);
+  const double slope = fit.slope(u);
+  const double et = dot(s.e[i], fit.t), enn = dot(s.e[i], fit.nn), denom = enn - slope * et;
+  const double half = std::sqrt(3.0 * s.var_along[i]);
+  if (std::abs(denom) >= 0.3) return s.c[i] + std::clamp((fit.at(u) - v) / denom, -half, half) * s.e[i];
+  const Vec2 q = fit.origin + u * fit.t + fit.at(u) * fit.nn, step = q - s.c[i];
+  const double len = norm(step);
+  return len > half ? s.c[i] + (half / len) * step : q;
+}
+
+// Vertex i refitted around the current curve: the first consistent fit, from the widest window
+// down; the edge midpoint when none is (it lies within half a pixel of the boundary).
+Vec2 fit_vertex(const Staircase& s, const std::vector<Vec2>& cur, const std::vector<Vec2>& tan, std::size_t i,
+                const StaircaseFitOptions& o, std::vector<std::size_t>& window) {
+  LocalFit fit;
+  fit.t = tan[i];
+  fit.nn = {-fit.t.y, fit.t.x};
+  fit.origin = cur[i];
+  for (int informative = o.informative; informative >= 1; --informative) {
+    fit_window(s, cur, tan, i, informative, window);
+    if (window.size() < 5) break;
+    const int nb = std::clamp(o.degree, 1, 3) + 1;
+    double M[4][5] = {};
+    normal_equations(s, tan, window, nb, fit, M);
+    for (double& x : fit.sol) x = 0;
+    if (!solve_fit(M, nb, fit)) continue;
+    if (!fit_consistent(s, window, fit, o.tolerance)) continue;
+    return refit_point(s, i, fit);
+  }
+  return s.c[i];
+}
+
+}  // namespace
+
+std::vector<Vec2> fit_mask_staircase(const std::vector<Vec2>& chain, Vec2 sp, const StaircaseFitOptions& o) {
+  const std::size_t n = chain.size();
+  Staircase s = staircase(chain, sp);
+  if (n < 5) return s.c;
+  const double px = std::min(sp.x, sp.y);
+  s.floor_var = (0.02 * px) * (0.02 * px);  // no vertex pins the curve tighter than 0.02 px
+  s.max_window = o.max_window_px * px;
+  s.cos_turn = std::cos(o.max_turn_deg * std::numbers::pi / 180.0);
+  // Tangents come from the current estimate of the curve; the first is a Taubin-smoothed staircase.
+  std::vector<Vec2> cur = s.c, next(n), tan(n);
+  smooth_closed_taubin(cur, 10);
   std::vector<std::size_t> window;
   for (int it = 0; it < std::max(1, o.iterations); ++it) {
-    for (std::size_t i = 0; i < n; ++i) {
-      Vec2 t = cur[(i + 1) % n] - cur[(i + n - 1) % n];
-      const double len = norm(t);
-      tan[i] = len > 0 ? (1.0 / len) * t : Vec2{1, 0};
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 t = tan[i], nn{-t.y, t.x}, origin = cur[i];
-      next[i] = c[i];  // no consistent fit: the edge midpoint (within half a pixel of the boundary)
-      for (int informative = o.informative; informative >= 1; --informative) {
-        window.assign(1, i);
-        for (int dir = -1; dir <= 1; dir += 2) {
-          int count = 0;
-          double arc = 0;
-          Vec2 prev = cur[i];
-          for (std::ptrdiff_t k = 1; k < static_cast<std::ptrdiff_t>(n / 2); ++k) {
-            const std::size_t j = wrap(static_cast<std::ptrdiff_t>(i) + dir * k);
-            arc += norm(cur[j] - prev);
-            prev = cur[j];
-            if (arc > max_window || dot(tan[j], t) < cos_turn) break;
-            window.push_back(j);
-            const Vec2 nj{-tan[j].y, tan[j].x};
-            if (std::abs(dot(e[j], nj)) < 0.7071) ++count;
-            if (count >= informative) break;
-          }
-        }
-        if (window.size() < 5) break;
-        // Weighted least squares v = Σ sol[m] u^m (m <= degree) in the frame (origin, t, nn): each
-        // vertex counts by the inverse of its uncertainty across the curve, which lies along its edge.
-        const int nb = std::clamp(o.degree, 1, 3) + 1;
-        double umax = 0;
-        for (std::size_t j : window) umax = std::max(umax, std::abs(dot(c[j] - origin, t)));
-        umax = 1.05 * umax + 1e-12;
-        double M[4][5] = {};
-        for (std::size_t j : window) {
-          const Vec2 d = c[j] - origin;
-          const double u = dot(d, t), v = dot(d, nn);
-          const Vec2 nj{-tan[j].y, tan[j].x};
-          const double en = dot(e[j], nj);
-          const double z = std::min(1.0, std::abs(u) / umax), k3 = 1 - z * z * z;
-          const double w = k3 * k3 * k3 / (var_along[j] * en * en + floor_var);
-          // Scaled powers (u / umax)^m keep the system well conditioned.
-          double bvec[4] = {1, u / umax, 0, 0};
-          for (int m = 2; m < 4; ++m) bvec[m] = bvec[m - 1] * bvec[1];
-          for (int aa = 0; aa < nb; ++aa) {
-            M[aa][nb] += w * bvec[aa] * v;
-            for (int bb = 0; bb < nb; ++bb) M[aa][bb] += w * bvec[aa] * bvec[bb];
-          }
-        }
-        // Gaussian elimination with partial pivoting.
-        bool singular = false;
-        const double scale = M[0][0];
-        for (int col = 0; col < nb && !singular; ++col) {
-          int piv = col;
-          for (int rr = col + 1; rr < nb; ++rr)
-            if (std::abs(M[rr][col]) > std::abs(M[piv][col])) piv = rr;
-          if (!(std::abs(M[piv][col]) > 1e-12 * scale)) {
-            singular = true;
-            break;
-          }
-          for (int cc = 0; cc <= nb; ++cc) std::swap(M[col][cc], M[piv][cc]);
-          for (int rr = 0; rr < nb; ++rr) {
-            if (rr == col) continue;
-            const double fct = M[rr][col] / M[col][col];
-            for (int cc = col; cc <= nb; ++cc) M[rr][cc] -= fct * M[col][cc];
-          }
-        }
-        if (singular) continue;
-        double sol[4] = {0, 0, 0, 0};
-        for (int m = 0; m < nb; ++m) {
-          double scale_m = 1;
-          for (int k = 0; k < m; ++k) scale_m *= umax;
-          sol[m] = M[m][nb] / M[m][m] / scale_m;
-        }
-        // The mask's own constraint: the boundary crosses each edge between its two pixel centres.
-        // A fit that crosses the inner half of its window outside that is the wrong model there
-        // (a flat run next to curved flanks, a sharp tip): shrink the window.
-        bool consistent = true;
-        for (std::size_t j : window) {
-          const Vec2 d = c[j] - origin;
-          const double u = dot(d, t), v = dot(d, nn);
-          if (std::abs(u) > 0.6 * umax) continue;
-          const double fu = sol[0] + u * (sol[1] + u * (sol[2] + u * sol[3]));
-          const double slope = sol[1] + u * (2 * sol[2] + 3 * sol[3] * u);
-          const double denom = dot(e[j], nn) - slope * dot(e[j], t);
-          if (std::abs(denom) < 0.3) continue;  // an edge nearly along the curve bounds little
-          if (std::abs((fu - v) / denom) > std::sqrt(3.0 * var_along[j]) * (1 + o.tolerance)) {
-            consistent = false;
-            break;
-          }
-        }
-        if (!consistent) continue;
-        auto f = [&sol](double u) { return sol[0] + u * (sol[1] + u * (sol[2] + u * sol[3])); };
-        // The new point: where the fit crosses the vertex's own edge, kept between the edge's two
-        // pixel centres (the mask says the boundary crosses there); for an edge nearly along the
-        // curve, the fit's point over the vertex, kept within half an edge of the midpoint.
-        const Vec2 d = c[i] - origin;
-        const double u = dot(d, t), v = dot(d, nn);
-        const double slope = sol[1] + u * (2 * sol[2] + 3 * sol[3] * u);
-        const double et = dot(e[i], t), enn = dot(e[i], nn), denom = enn - slope * et;
-        const double half = std::sqrt(3.0 * var_along[i]);
-        if (std::abs(denom) >= 0.3) {
-          next[i] = c[i] + std::clamp((f(u) - v) / denom, -half, half) * e[i];
-        } else {
-          const Vec2 q = origin + u * t + f(u) * nn, step = q - c[i];
-          const double len = norm(step);
-          next[i] = len > half ? c[i] + (half / len) * step : q;
-        }
-        break;
-      }
-    }
+    tangents(cur, tan);
+    for (std::size_t i = 0; i < n; ++i) next[i] = fit_vertex(s, cur, tan, i, o, window);
     cur.swap(next);
   }
   return cur;

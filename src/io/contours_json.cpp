@@ -133,15 +133,9 @@ std::string quoted(const std::string& s) {
   return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-}  // namespace
-
-Sequence parse_contours_json(const std::string& text, const std::string& source, const StackOptions& options,
-                             std::vector<ContourRepair>* repairs) {
-  Location file_loc;
-  file_loc.file = source;
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
-    fail(ErrorCode::EmptyFile, file_loc, "file is empty", "write contours with `contour4d extract` or see docs/formats.md");
-
+// The parsed document; throws with the line for malformed JSON, too deep nesting and numbers that
+// overflow a double.
+json parse_document(const std::string& text, const Location& file_loc) {
   json doc;
   try {
     const json::parser_callback_t limit_depth = [&](int depth, json::parse_event_t, json&) {
@@ -177,7 +171,12 @@ Sequence parse_contours_json(const std::string& text, const std::string& source,
   } catch (const json::exception& e) {
     fail(ErrorCode::Parse, file_loc, std::string("invalid JSON: ") + e.what(), "check the file is valid JSON");
   }
+  return doc;
+}
 
+// Checks the top level (an object with our format, version 1, units mm, a known space); sets
+// meta.space when the file gives it.
+void check_header(const json& doc, const Location& file_loc, Sequence& meta) {
   if (!doc.is_object()) fail(ErrorCode::Format, file_loc, "top level is a " + type_name(doc) + ", not an object");
   const auto fmt_it = doc.find("format");
   if (fmt_it == doc.end() || !fmt_it->is_string() || fmt_it->get<std::string>() != kFormatName)
@@ -191,7 +190,6 @@ Sequence parse_contours_json(const std::string& text, const std::string& source,
          ver_it == doc.end() ? std::string("no \"version\" field")
                              : "unsupported version " + ver_it->dump() + " (this build reads version 1)",
          "upgrade contour4d or write version 1");
-  Sequence meta;
   if (const auto it = doc.find("units"); it != doc.end()) {
     if (!it->is_string() || it->get<std::string>() != "mm")
       fail(ErrorCode::Format, file_loc, "\"units\" is " + it->dump(-1, ' ', false, json::error_handler_t::replace) +
@@ -204,6 +202,66 @@ Sequence parse_contours_json(const std::string& text, const std::string& source,
       fail(ErrorCode::Format, file_loc, "\"space\" must be \"LPS\", \"RAS\" or \"unknown\"");
     meta.space = s;
   }
+}
+
+// The time of frame f (ms): its "time_ms", else f.
+double frame_time(const json& fr, std::size_t f, const Location& floc) {
+  double t = static_cast<double>(f);
+  if (const auto it = fr.find("time_ms"); it != fr.end()) {
+    if (!it->is_number()) fail(ErrorCode::Format, floc, "\"time_ms\" is not a number");
+    t = it->get<double>();
+    if (!std::isfinite(t)) fail(ErrorCode::NonFinite, floc, "\"time_ms\" is not finite");
+  }
+  return t;
+}
+
+// Contour c of frame f (its slice id, label and points), with its line in the file when known.
+RawContour read_contour(const json& jc, std::size_t f, std::size_t c, const std::vector<std::vector<int>>& lines,
+                        const Location& floc) {
+  RawContour rc;
+  rc.frame = static_cast<int>(f);
+  rc.index = static_cast<int>(c);
+  if (f < lines.size() && c < lines[f].size()) rc.line = lines[f][c];
+  Location cloc = floc;
+  cloc.contour = rc.index;
+  if (rc.line > 0) cloc.line = rc.line;
+  if (!jc.is_object()) fail(ErrorCode::Format, cloc, "contour is a " + type_name(jc) + ", not an object");
+  const auto sit = jc.find("slice");
+  if (sit == jc.end()) fail(ErrorCode::Format, cloc, "contour has no \"slice\" id");
+  if (!sit->is_number_integer() || sit->get<long long>() < 0 || sit->get<long long>() > kMaxSliceId)
+    fail(ErrorCode::Format, cloc,
+         "\"slice\" is " + sit->dump() + ", expected an integer plane id in 0.." + std::to_string(kMaxSliceId));
+  rc.contour.slice = static_cast<int>(sit->get<long long>());
+  cloc.slice = rc.contour.slice;
+  if (const auto it = jc.find("label"); it != jc.end()) {
+    if (!it->is_string()) fail(ErrorCode::Format, cloc, "\"label\" is not a string");
+    rc.contour.label = it->get<std::string>();
+  }
+  const auto pit = jc.find("points");
+  if (pit == jc.end() || !pit->is_array())
+    fail(ErrorCode::Format, cloc, pit == jc.end() ? "contour has no \"points\" array" : "\"points\" is not an array");
+  rc.contour.points.reserve(pit->size());
+  for (std::size_t p = 0; p < pit->size(); ++p) {
+    const json& jp = (*pit)[p];
+    if (!jp.is_array() || jp.size() != 3)
+      fail(ErrorCode::Format, cloc, "point " + std::to_string(p) + " is not an [x, y, z] array");
+    rc.contour.points.push_back({coordinate(jp[0], cloc, p, 0), coordinate(jp[1], cloc, p, 1),
+                                 coordinate(jp[2], cloc, p, 2)});
+  }
+  return rc;
+}
+
+}  // namespace
+
+Sequence parse_contours_json(const std::string& text, const std::string& source, const StackOptions& options,
+                             std::vector<ContourRepair>* repairs) {
+  Location file_loc;
+  file_loc.file = source;
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    fail(ErrorCode::EmptyFile, file_loc, "file is empty", "write contours with `contour4d extract` or see docs/formats.md");
+  const json doc = parse_document(text, file_loc);
+  Sequence meta;
+  check_header(doc, file_loc, meta);
   const auto frames_it = doc.find("frames");
   if (frames_it == doc.end() || !frames_it->is_array())
     fail(ErrorCode::Format, file_loc, frames_it == doc.end() ? "no \"frames\" array" : "\"frames\" is not an array");
@@ -217,50 +275,11 @@ Sequence parse_contours_json(const std::string& text, const std::string& source,
     floc.frame = static_cast<int>(f);
     const json& fr = frames[f];
     if (!fr.is_object()) fail(ErrorCode::Format, floc, "frame is a " + type_name(fr) + ", not an object");
-    double t = static_cast<double>(f);
-    if (const auto it = fr.find("time_ms"); it != fr.end()) {
-      if (!it->is_number()) fail(ErrorCode::Format, floc, "\"time_ms\" is not a number");
-      t = it->get<double>();
-      if (!std::isfinite(t)) fail(ErrorCode::NonFinite, floc, "\"time_ms\" is not finite");
-    }
-    times.push_back(t);
+    times.push_back(frame_time(fr, f, floc));
     const auto cit = fr.find("contours");
     if (cit == fr.end() || !cit->is_array())
       fail(ErrorCode::Format, floc, cit == fr.end() ? "frame has no \"contours\" array" : "\"contours\" is not an array");
-    for (std::size_t c = 0; c < cit->size(); ++c) {
-      const json& jc = (*cit)[c];
-      RawContour rc;
-      rc.frame = static_cast<int>(f);
-      rc.index = static_cast<int>(c);
-      if (f < lines.size() && c < lines[f].size()) rc.line = lines[f][c];
-      Location cloc = floc;
-      cloc.contour = rc.index;
-      if (rc.line > 0) cloc.line = rc.line;
-      if (!jc.is_object()) fail(ErrorCode::Format, cloc, "contour is a " + type_name(jc) + ", not an object");
-      const auto sit = jc.find("slice");
-      if (sit == jc.end()) fail(ErrorCode::Format, cloc, "contour has no \"slice\" id");
-      if (!sit->is_number_integer() || sit->get<long long>() < 0 || sit->get<long long>() > kMaxSliceId)
-        fail(ErrorCode::Format, cloc,
-             "\"slice\" is " + sit->dump() + ", expected an integer plane id in 0.." + std::to_string(kMaxSliceId));
-      rc.contour.slice = static_cast<int>(sit->get<long long>());
-      cloc.slice = rc.contour.slice;
-      if (const auto it = jc.find("label"); it != jc.end()) {
-        if (!it->is_string()) fail(ErrorCode::Format, cloc, "\"label\" is not a string");
-        rc.contour.label = it->get<std::string>();
-      }
-      const auto pit = jc.find("points");
-      if (pit == jc.end() || !pit->is_array())
-        fail(ErrorCode::Format, cloc, pit == jc.end() ? "contour has no \"points\" array" : "\"points\" is not an array");
-      rc.contour.points.reserve(pit->size());
-      for (std::size_t p = 0; p < pit->size(); ++p) {
-        const json& jp = (*pit)[p];
-        if (!jp.is_array() || jp.size() != 3)
-          fail(ErrorCode::Format, cloc, "point " + std::to_string(p) + " is not an [x, y, z] array");
-        rc.contour.points.push_back({coordinate(jp[0], cloc, p, 0), coordinate(jp[1], cloc, p, 1),
-                                     coordinate(jp[2], cloc, p, 2)});
-      }
-      raw.push_back(std::move(rc));
-    }
+    for (std::size_t c = 0; c < cit->size(); ++c) raw.push_back(read_contour((*cit)[c], f, c, lines, floc));
   }
   if (repairs) *repairs = repair_contours(raw);
   Sequence seq = build_sequence(raw, static_cast<int>(frames.size()), times, source, options);

@@ -46,9 +46,8 @@ int add_accessor(tinygltf::Model& m, int view, int component, int type, std::siz
   return static_cast<int>(m.accessors.size() - 1);
 }
 
-}  // namespace
-
-std::string gltf_glb_bytes(const MeshSequence& seq, const GltfOptions& opt) {
+// Throws unless seq is non-empty, every frame has frame 0's vertex count and every index is in range.
+void check_sequence(const MeshSequence& seq) {
   if (seq.positions.empty() || seq.positions[0].empty() || seq.triangles.empty())
     throw InvalidInput(ErrorCode::BadMesh, {}, "nothing to export: the mesh sequence is empty", "reconstruct a 4D mesh first");
   const std::size_t nv = seq.positions[0].size(), nf = seq.positions.size();
@@ -59,12 +58,20 @@ std::string gltf_glb_bytes(const MeshSequence& seq, const GltfOptions& opt) {
   for (const Triangle& t : seq.triangles)
     for (auto i : t)
       if (i >= nv) throw InvalidInput(ErrorCode::BadMesh, {}, "triangle index out of range", "the triangle list is corrupt");
+}
 
-  // Quantisation grid (mm) in glTF axes: base uint16, displacements int16, same step.
+//! Quantisation grid (mm) in glTF axes: base uint16, displacements int16, same step.
+struct Grid {
+  Vec3 lo;
+  double step = 0.0;
+};
+
+// The grid over all frames' vertices (glTF axes); throws on a non-finite vertex.
+Grid quantisation_grid(const MeshSequence& seq, bool rotate) {
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (const auto& frame : seq.positions)
     for (const Vec3& p0 : frame) {
-      const Vec3 p = to_gltf(p0, opt.lps_to_y_up);
+      const Vec3 p = to_gltf(p0, rotate);
       if (!is_finite(p)) throw InvalidInput(ErrorCode::NonFinite, {}, "non-finite vertex", "check the reconstruction");
       for (int c = 0; c < 3; ++c) {
         lo[c] = std::min(lo[c], p[c]);
@@ -72,61 +79,83 @@ std::string gltf_glb_bytes(const MeshSequence& seq, const GltfOptions& opt) {
       }
     }
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9});
-  const double step = extent / 32767.0;  // any displacement fits int16, any position uint16
+  return {lo, extent / 32767.0};  // any displacement fits int16, any position uint16
+}
 
+// A model with the asset, the quantisation extension and one empty buffer.
+tinygltf::Model empty_model() {
   tinygltf::Model m;
   m.asset.version = "2.0";
   m.asset.generator = "contour4d";
   m.extensionsUsed = {"KHR_mesh_quantization"};
   m.extensionsRequired = {"KHR_mesh_quantization"};
   m.buffers.resize(1);
+  return m;
+}
 
-  std::vector<std::uint16_t> base(nv * 4, 0);  // 4 per vertex: each element aligned to 4 bytes
-  std::vector<double> bmn(3, 65535), bmx(3, 0);
+// Frame 0 quantised on the grid, 4 uint16 per vertex (each element aligned to 4 bytes).
+std::vector<std::uint16_t> quantised_base(const MeshSequence& seq, const Grid& g, bool rotate) {
+  const std::size_t nv = seq.positions[0].size();
+  std::vector<std::uint16_t> base(nv * 4, 0);
   for (std::size_t v = 0; v < nv; ++v) {
-    const Vec3 p = to_gltf(seq.positions[0][v], opt.lps_to_y_up);
-    for (int c = 0; c < 3; ++c) {
-      const auto q = static_cast<std::uint16_t>(std::clamp(std::lround((p[c] - lo[c]) / step), 0L, 65535L));
-      base[4 * v + c] = q;
-      bmn[c] = std::min<double>(bmn[c], q);
-      bmx[c] = std::max<double>(bmx[c], q);
-    }
+    const Vec3 p = to_gltf(seq.positions[0][v], rotate);
+    for (int c = 0; c < 3; ++c) base[4 * v + c] = static_cast<std::uint16_t>(std::clamp(std::lround((p[c] - g.lo[c]) / g.step), 0L, 65535L));
   }
+  return base;
+}
+
+// Adds the base positions and the indices (views and accessors) to the primitive.
+void add_geometry(tinygltf::Model& m, const MeshSequence& seq, const std::vector<std::uint16_t>& base,
+                  tinygltf::Primitive& prim) {
+  const std::size_t nv = seq.positions[0].size();
+  std::vector<double> bmn(3, 65535), bmx(3, 0);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int c = 0; c < 3; ++c) {
+      bmn[c] = std::min<double>(bmn[c], base[4 * v + c]);
+      bmx[c] = std::max<double>(bmx[c], base[4 * v + c]);
+    }
   std::vector<std::uint32_t> idx;
   idx.reserve(seq.triangles.size() * 3);
   for (const Triangle& t : seq.triangles) idx.insert(idx.end(), t.begin(), t.end());
-
   int view = add_view(m, base, TINYGLTF_TARGET_ARRAY_BUFFER);
   m.bufferViews.back().byteStride = 8;
-  const int pos_acc = add_accessor(m, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3, nv, bmn, bmx);
+  prim.attributes["POSITION"] = add_accessor(m, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3, nv, bmn, bmx);
   view = add_view(m, idx, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  const int idx_acc = add_accessor(m, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size(),
-                                   {0}, {static_cast<double>(nv - 1)});
-
-  tinygltf::Primitive prim;
-  prim.attributes["POSITION"] = pos_acc;
-  prim.indices = idx_acc;
+  prim.indices = add_accessor(m, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, idx.size(), {0},
+                              {static_cast<double>(nv - 1)});
   prim.mode = TINYGLTF_MODE_TRIANGLES;
+}
+
+// Adds one morph target per frame (int16 displacements from the base) to the primitive; returns their names.
+tinygltf::Value::Array add_morph_targets(tinygltf::Model& m, const MeshSequence& seq, const Grid& g, bool rotate,
+                                         const std::vector<std::uint16_t>& base, tinygltf::Primitive& prim) {
+  const std::size_t nv = seq.positions[0].size(), nf = seq.positions.size();
   tinygltf::Value::Array target_names;
   for (std::size_t f = 0; f < nf; ++f) {
     std::vector<std::int16_t> d(nv * 4, 0);
     std::vector<double> mn(3, 0), mx(3, 0);
     for (std::size_t v = 0; v < nv; ++v) {
-      const Vec3 p = to_gltf(seq.positions[f][v], opt.lps_to_y_up);
+      const Vec3 p = to_gltf(seq.positions[f][v], rotate);
       for (int c = 0; c < 3; ++c) {
-        const long q = std::clamp(std::lround((p[c] - lo[c]) / step), 0L, 65535L) - static_cast<long>(base[4 * v + c]);
+        const long q = std::clamp(std::lround((p[c] - g.lo[c]) / g.step), 0L, 65535L) - static_cast<long>(base[4 * v + c]);
         d[4 * v + c] = static_cast<std::int16_t>(std::clamp(q, -32767L, 32767L));
         mn[c] = std::min<double>(mn[c], d[4 * v + c]);
         mx[c] = std::max<double>(mx[c], d[4 * v + c]);
       }
     }
-    view = add_view(m, d, TINYGLTF_TARGET_ARRAY_BUFFER);
+    const int view = add_view(m, d, TINYGLTF_TARGET_ARRAY_BUFFER);
     m.bufferViews.back().byteStride = 8;
     std::map<std::string, int> target;
     target["POSITION"] = add_accessor(m, view, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, nv, mn, mx);
     prim.targets.push_back(target);
     target_names.emplace_back("frame_" + std::to_string(f));
   }
+  return target_names;
+}
+
+// Adds the mesh (with its target names, units and axes), its node (grid to metres) and the scene.
+void add_mesh_node_scene(tinygltf::Model& m, const tinygltf::Primitive& prim, const tinygltf::Value::Array& target_names,
+                         std::size_t nf, const Grid& g, const GltfOptions& opt) {
   tinygltf::Mesh mesh;
   mesh.name = opt.name;
   mesh.primitives.push_back(prim);
@@ -137,19 +166,22 @@ std::string gltf_glb_bytes(const MeshSequence& seq, const GltfOptions& opt) {
   extras["axes"] = tinygltf::Value(std::string(opt.lps_to_y_up ? "glTF (x,y,z) = LPS (x, z, -y)" : "LPS"));
   mesh.extras = tinygltf::Value(extras);
   m.meshes.push_back(mesh);
-
   tinygltf::Node node;
   node.name = opt.name;
   node.mesh = 0;
-  node.translation = {lo.x * 0.001, lo.y * 0.001, lo.z * 0.001};
-  node.scale = {step * 0.001, step * 0.001, step * 0.001};
+  node.translation = {g.lo.x * 0.001, g.lo.y * 0.001, g.lo.z * 0.001};
+  node.scale = {g.step * 0.001, g.step * 0.001, g.step * 0.001};
   m.nodes.push_back(node);
   tinygltf::Scene scene;
   scene.nodes = {0};
   m.scenes.push_back(scene);
   m.defaultScene = 0;
+}
 
-  // Weights animation: key f has weight 1 on target f.
+// Weights animation: key f has weight 1 on target f (times in s from frame 0, 40 ms apart when
+// not given); throws when the times do not increase.
+void add_weights_animation(tinygltf::Model& m, const MeshSequence& seq, const GltfOptions& opt) {
+  const std::size_t nf = seq.positions.size();
   std::vector<float> times(nf), weights(nf * nf, 0.0f);
   for (std::size_t f = 0; f < nf; ++f) {
     const double t = seq.times_ms.size() == nf ? seq.times_ms[f] - seq.times_ms[0] : static_cast<double>(f) * 40.0;
@@ -160,7 +192,7 @@ std::string gltf_glb_bytes(const MeshSequence& seq, const GltfOptions& opt) {
     if (!(times[f] > times[f - 1]))
       throw InvalidInput(ErrorCode::BadMesh, {{}, -1, static_cast<int>(f)}, "frame times do not increase",
                          "give each frame a distinct, increasing time_ms");
-  view = add_view(m, times, -1);
+  int view = add_view(m, times, -1);
   m.bufferViews.back().target = 0;
   const int in_acc = add_accessor(m, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, nf, {times.front()},
                                   {times.back()});
@@ -180,6 +212,20 @@ std::string gltf_glb_bytes(const MeshSequence& seq, const GltfOptions& opt) {
   anim.samplers.push_back(sampler);
   anim.channels.push_back(channel);
   m.animations.push_back(anim);
+}
+
+}  // namespace
+
+std::string gltf_glb_bytes(const MeshSequence& seq, const GltfOptions& opt) {
+  check_sequence(seq);
+  const Grid g = quantisation_grid(seq, opt.lps_to_y_up);
+  tinygltf::Model m = empty_model();
+  const std::vector<std::uint16_t> base = quantised_base(seq, g, opt.lps_to_y_up);
+  tinygltf::Primitive prim;
+  add_geometry(m, seq, base, prim);
+  const tinygltf::Value::Array target_names = add_morph_targets(m, seq, g, opt.lps_to_y_up, base, prim);
+  add_mesh_node_scene(m, prim, target_names, seq.positions.size(), g, opt);
+  add_weights_animation(m, seq, opt);
 
   std::ostringstream os;
   tinygltf::TinyGLTF writer;

@@ -231,6 +231,242 @@ std::string join_ids(const std::vector<int>& ids) {
   throw InvalidInput(e.code(), where, msg, e.hint());
 }
 
+// The file name of frame f: its given name, else GPFile_<f>.txt in the folder.
+std::string frame_file_name(const std::vector<std::string>& frame_names, const std::string& source, std::size_t f) {
+  if (f < frame_names.size()) return frame_names[f];
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "GPFile_%03zu.txt", f);
+  return source + "/" + buf;
+}
+
+//! The guide points of all frames that are kept, with what was seen.
+struct FramePoints {
+  std::vector<std::vector<GuidePoint>> points;  // per frame: wanted types and the septum
+  std::set<std::string> present_types;          // every contour type seen
+  std::map<int, int> count_by_slice;            // wanted points per slice, all frames
+};
+
+// Reads every frame; keeps the wanted types (and the septum, to close the epicardium). Throws on a
+// kept point whose slice is not in SliceInfoFile.txt.
+FramePoints read_frames(const std::vector<std::string>& frames, const std::vector<std::string>& files,
+                        const std::map<int, GpFileSlice>& info, const std::set<std::string>& wanted) {
+  const bool want_epi = wanted.count("SAX_LV_EPICARDIAL") > 0;
+  FramePoints fp;
+  fp.points.resize(frames.size());
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    for (GuidePoint& g : parse_frame(frames[f], files[f])) {
+      fp.present_types.insert(g.type);
+      const bool keep = wanted.count(g.type) || (want_epi && g.type == "SAX_RV_SEPTUM");
+      if (!keep) continue;
+      if (!info.count(g.slice))
+        parse_fail(ErrorCode::Format, files[f], g.line,
+                   "slice id " + std::to_string(g.slice) + " is not in SliceInfoFile.txt",
+                   "the fifth column must be a slice id listed in SliceInfoFile.txt");
+      if (wanted.count(g.type)) ++fp.count_by_slice[g.slice];
+      fp.points[f].push_back(std::move(g));
+    }
+  }
+  return fp;
+}
+
+// Throws when one of the chosen contour types has no point in any frame.
+void check_types_present(const std::vector<std::string>& types, const std::set<std::string>& present_types,
+                         const Location& folder) {
+  for (const std::string& t : types) {
+    if (!present_types.count(t)) {
+      std::string list;
+      for (const std::string& p : present_types) list += (list.empty() ? "" : ", ") + p;
+      throw InvalidInput(ErrorCode::UnknownLabel, folder, "no point has the contour type " + t,
+                         "contour types present: " + (list.empty() ? std::string("none") : list));
+    }
+  }
+}
+
+// Short-axis reference: the slice carrying wanted points whose plane is parallel to the most such
+// slices (ties: the smallest id); -1 when there is none.
+int reference_slice(const std::map<int, GpFileSlice>& info, const std::map<int, int>& count_by_slice, double cos_tol) {
+  int best_ref = -1;
+  std::size_t best_size = 0;
+  for (const auto& [id, n] : count_by_slice) {
+    std::size_t size = 0;
+    for (const auto& [id2, n2] : count_by_slice)
+      if (std::abs(dot(info.at(id).normal, info.at(id2).normal)) >= cos_tol) ++size;
+    if (size > best_size) {
+      best_size = size;
+      best_ref = id;
+    }
+  }
+  return best_ref;
+}
+
+// Lists every slice in result.slices, used (parallel to the reference) or with a note why not, and
+// fills result.slices_used and slices_skipped; returns the used ids.
+std::set<int> choose_slices(const std::map<int, GpFileSlice>& info, const std::map<int, int>& count_by_slice,
+                            int best_ref, double cos_tol, GpFileResult& result) {
+  std::set<int> used;
+  for (auto [id, s] : info) {
+    if (!count_by_slice.count(id)) {
+      s.note = "no points of the chosen contour types";
+    } else {
+      const double c = std::min(1.0, std::abs(dot(s.normal, info.at(best_ref).normal)));
+      if (c >= cos_tol) {
+        s.used = true;
+        used.insert(id);
+        result.slices_used.push_back(id);
+      } else {
+        std::ostringstream os;
+        os.precision(3);
+        os << "image plane " << std::acos(c) * 180.0 / std::numbers::pi << " degrees from the short-axis planes "
+           << "(long-axis view)";
+        s.note = os.str();
+        result.slices_skipped.push_back(id);
+      }
+    }
+    result.slices.push_back(s);
+  }
+  return used;
+}
+
+//! How the contours were closed, for the notes.
+struct ClosingStats {
+  int closed_epi = 0, straight_epi = 0;
+  std::map<std::string, int> open_types;  // type -> contours with a closing gap
+};
+
+// biv-me's epicardium is a loop with the septal part missing; the opening is the largest gap, not
+// necessarily between the last and first points: rotates it to the ends of c, then closes it with
+// the septum points where there are some (`septum` null: none).
+void close_epicardium(std::vector<Vec3>& c, const std::vector<const GuidePoint*>* septum, ClosingStats& stats) {
+  std::vector<double> gaps;
+  std::size_t widest = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    gaps.push_back(distance(c[i], c[(i + 1) % c.size()]));
+    if (gaps[i] > gaps[widest]) widest = i;
+  }
+  const double gap = gaps[widest];
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  std::rotate(c.begin(), c.begin() + static_cast<std::ptrdiff_t>((widest + 1) % c.size()), c.end());
+  if (gap <= 4.0 * gaps[gaps.size() / 2]) {
+    // already closed
+  } else if (septum != nullptr && !septum->empty()) {
+    // The septal wall's RV side completes the LV epicardium (as biv-me fits it): append the
+    // septum in the direction that joins the open ends with the shorter gaps.
+    const Vec3 s0 = septum->front()->p, s1 = septum->back()->p;
+    const bool reverse = distance(c.back(), s1) + distance(s0, c.front()) <
+                         distance(c.back(), s0) + distance(s1, c.front());
+    std::vector<Vec3> s;
+    for (const GuidePoint* g : *septum) s.push_back(g->p);
+    if (reverse) std::reverse(s.begin(), s.end());
+    // Septum ends may overshoot the epicardium's open ends; drop points that lead away
+    // from the end they join, or the joint folds over itself.
+    std::size_t b = 0, e = s.size();
+    while (e - b > 1 && distance(s[b + 1], c.back()) < distance(s[b], c.back())) ++b;
+    while (e - b > 1 && distance(s[e - 2], c.front()) < distance(s[e - 1], c.front())) --e;
+    c.insert(c.end(), s.begin() + static_cast<std::ptrdiff_t>(b), s.begin() + static_cast<std::ptrdiff_t>(e));
+    ++stats.closed_epi;
+  } else {
+    ++stats.straight_epi;
+  }
+}
+
+// Counts contour c (at least 3 points) of `type` as open when its closing gap exceeds 4x the
+// median point spacing.
+void note_open_contour(const std::vector<Vec3>& c, const std::string& type, ClosingStats& stats) {
+  std::vector<double> gaps;
+  for (std::size_t i = 0; i + 1 < c.size(); ++i) gaps.push_back(distance(c[i], c[i + 1]));
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  if (distance(c.back(), c.front()) > 4.0 * gaps[gaps.size() / 2] + 1e-9) ++stats.open_types[type];
+}
+
+// Appends frame f's contours to raw, one per (slice, type) on the used slices, points in file order;
+// returns false when the frame has none.
+bool frame_contours(const std::vector<GuidePoint>& points, std::size_t f, const std::set<int>& used,
+                    const std::set<std::string>& wanted, std::vector<RawContour>& raw, ClosingStats& stats) {
+  std::map<std::pair<int, std::string>, std::vector<const GuidePoint*>> groups;
+  for (const GuidePoint& g : points)
+    if (used.count(g.slice)) groups[{g.slice, g.type}].push_back(&g);
+  int index = 0;
+  bool any = false;
+  for (const auto& [key, pts] : groups) {
+    if (!wanted.count(key.second)) continue;  // the septum only closes the epicardium
+    any = true;
+    RawContour rc;
+    rc.frame = static_cast<int>(f);
+    rc.index = index++;
+    rc.line = pts.front()->line;
+    rc.contour.slice = key.first;
+    rc.contour.label = gpfile_label(key.second);
+    for (const GuidePoint* g : pts) rc.contour.points.push_back(g->p);
+    std::vector<Vec3>& c = rc.contour.points;
+    if (key.second == "SAX_LV_EPICARDIAL" && c.size() >= 3) {
+      const auto sep = groups.find({key.first, "SAX_RV_SEPTUM"});
+      close_epicardium(c, sep != groups.end() ? &sep->second : nullptr, stats);
+    } else if (c.size() >= 3) {
+      note_open_contour(c, key.second, stats);
+    }
+    raw.push_back(std::move(rc));
+  }
+  return any;
+}
+
+// Throws for a frame without any contour of the chosen types on the short-axis slices.
+[[noreturn]] void throw_empty_frame(const std::string& file, std::size_t f, const std::vector<std::string>& types,
+                                    const std::vector<int>& slices_used) {
+  Location where;
+  where.file = file;
+  where.frame = static_cast<int>(f);
+  std::string t;
+  for (const std::string& x : types) t += (t.empty() ? "" : ", ") + x;
+  throw InvalidInput(ErrorCode::EmptyFrame, where, "no " + t + " points on the short-axis slices (" +
+                                                       join_ids(slices_used) + ")",
+                     "every frame needs at least one contour; choose other contour types with --type");
+}
+
+// build_sequence over the contours; an error in a frame is placed at its GPFile (and line).
+Sequence build_in_files(const std::vector<RawContour>& raw, const std::vector<std::string>& files,
+                        const std::string& source, const StackOptions& stack) {
+  try {
+    return build_sequence(raw, static_cast<int>(files.size()), {}, source, stack);
+  } catch (const Error& e) {
+    const int f = e.where().frame;
+    if (f < 0 || static_cast<std::size_t>(f) >= files.size()) throw;
+    int line = -1;
+    if (e.where().contour >= 0)
+      for (const RawContour& rc : raw)
+        if (rc.frame == f && rc.index == e.where().contour) line = rc.line;
+    relocate(e, files[static_cast<std::size_t>(f)], line);
+  }
+}
+
+// The notes on what was read, chosen and closed.
+void add_notes(GpFileResult& result, const std::vector<std::string>& types, const std::map<int, int>& count_by_slice,
+               const ClosingStats& stats, std::size_t frame_count) {
+  std::string t;
+  for (const std::string& x : types) t += (t.empty() ? "" : ", ") + x + " -> \"" + gpfile_label(x) + "\"";
+  result.notes.push_back("contour types: " + t);
+  result.notes.push_back("slices used (short-axis): " + join_ids(result.slices_used));
+  if (!result.slices_skipped.empty()) {
+    std::string s;
+    for (const GpFileSlice& sl : result.slices)
+      if (!sl.used && count_by_slice.count(sl.id)) s += (s.empty() ? "" : "; ") + std::to_string(sl.id) + ": " + sl.note;
+    result.notes.push_back("slices skipped: " + s);
+  }
+  std::vector<int> empty_ids;
+  for (const GpFileSlice& sl : result.slices)
+    if (!count_by_slice.count(sl.id)) empty_ids.push_back(sl.id);
+  if (!empty_ids.empty()) result.notes.push_back("slices without the chosen contour types: " + join_ids(empty_ids));
+  result.notes.push_back("frames: " + std::to_string(frame_count) + " files in file-number order; time = frame index x 1 ms "
+                         "(column 7 of the GPFiles is not used)");
+  if (stats.closed_epi) result.notes.push_back("SAX_LV_EPICARDIAL closed with the SAX_RV_SEPTUM points in " +
+                                               std::to_string(stats.closed_epi) + " contours");
+  if (stats.straight_epi)
+    result.notes.push_back("SAX_LV_EPICARDIAL is open and had no SAX_RV_SEPTUM points in " + std::to_string(stats.straight_epi) +
+                           " contours: closed with a straight edge (septum shape lost there)");
+  for (const auto& [type, n] : stats.open_types)
+    result.notes.push_back(type + " looks open in " + std::to_string(n) +
+                           " contours (closing gap > 4x the median point spacing): closed with a straight edge");
+}
+
 }  // namespace
 
 std::string gpfile_label(const std::string& contour_type) {
@@ -253,197 +489,32 @@ GpFileResult parse_gpfile_texts(const std::vector<std::string>& frames, const st
   if (frames.empty()) throw IoError(ErrorCode::FileNotFound, folder, "no GPFile_*.txt frames", kGpHint);
   if (frames.size() > kMaxFrames)
     throw IoError(ErrorCode::Format, folder, "more than " + std::to_string(kMaxFrames) + " frames", kGpHint);
-  auto frame_file = [&](std::size_t f) {
-    if (f < frame_names.size()) return frame_names[f];
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "GPFile_%03zu.txt", f);
-    return source + "/" + buf;
-  };
-  for (std::size_t f = 0; f < frames.size(); ++f) result.frame_files.push_back(frame_file(f));
+  for (std::size_t f = 0; f < frames.size(); ++f) result.frame_files.push_back(frame_file_name(frame_names, source, f));
+  const std::vector<std::string>& files = result.frame_files;
 
   const std::map<int, GpFileSlice> info = parse_slice_info(slice_info, source + "/SliceInfoFile.txt");
   std::vector<std::string> types = options.contour_types;
   if (types.empty()) types = {"SAX_LV_ENDOCARDIAL"};
   const std::set<std::string> wanted(types.begin(), types.end());
-  const bool want_epi = wanted.count("SAX_LV_EPICARDIAL") > 0;
-
-  // Read every frame; keep the wanted types (and the septum, to close the epicardium).
-  std::vector<std::vector<GuidePoint>> points(frames.size());
-  std::set<std::string> present_types;
-  std::map<int, int> count_by_slice;  // wanted points per slice, all frames
-  for (std::size_t f = 0; f < frames.size(); ++f) {
-    for (GuidePoint& g : parse_frame(frames[f], frame_file(f))) {
-      present_types.insert(g.type);
-      const bool keep = wanted.count(g.type) || (want_epi && g.type == "SAX_RV_SEPTUM");
-      if (!keep) continue;
-      if (!info.count(g.slice))
-        parse_fail(ErrorCode::Format, frame_file(f), g.line,
-                   "slice id " + std::to_string(g.slice) + " is not in SliceInfoFile.txt",
-                   "the fifth column must be a slice id listed in SliceInfoFile.txt");
-      if (wanted.count(g.type)) ++count_by_slice[g.slice];
-      points[f].push_back(std::move(g));
-    }
-  }
-  for (const std::string& t : types) {
-    if (!present_types.count(t)) {
-      std::string list;
-      for (const std::string& p : present_types) list += (list.empty() ? "" : ", ") + p;
-      throw InvalidInput(ErrorCode::UnknownLabel, folder, "no point has the contour type " + t,
-                         "contour types present: " + (list.empty() ? std::string("none") : list));
-    }
-  }
+  const FramePoints fp = read_frames(frames, files, info, wanted);
+  check_types_present(types, fp.present_types, folder);
 
   // Short-axis selection: the largest group of mutually parallel image planes among the slices
   // carrying wanted points (ties: the group of the smallest id).
   const double cos_tol = std::cos(options.parallel_tolerance_deg * std::numbers::pi / 180.0);
-  int best_ref = -1;
-  std::size_t best_size = 0;
-  for (const auto& [id, n] : count_by_slice) {
-    std::size_t size = 0;
-    for (const auto& [id2, n2] : count_by_slice)
-      if (std::abs(dot(info.at(id).normal, info.at(id2).normal)) >= cos_tol) ++size;
-    if (size > best_size) {
-      best_size = size;
-      best_ref = id;
-    }
-  }
-  std::set<int> used;
-  for (auto [id, s] : info) {
-    if (!count_by_slice.count(id)) {
-      s.note = "no points of the chosen contour types";
-    } else {
-      const double c = std::min(1.0, std::abs(dot(s.normal, info.at(best_ref).normal)));
-      if (c >= cos_tol) {
-        s.used = true;
-        used.insert(id);
-        result.slices_used.push_back(id);
-      } else {
-        std::ostringstream os;
-        os.precision(3);
-        os << "image plane " << std::acos(c) * 180.0 / std::numbers::pi << " degrees from the short-axis planes "
-           << "(long-axis view)";
-        s.note = os.str();
-        result.slices_skipped.push_back(id);
-      }
-    }
-    result.slices.push_back(s);
-  }
+  const int best_ref = reference_slice(info, fp.count_by_slice, cos_tol);
+  const std::set<int> used = choose_slices(info, fp.count_by_slice, best_ref, cos_tol, result);
 
   // One contour per (slice, type) per frame, points in file order.
   std::vector<RawContour> raw;
-  std::vector<int> raw_line;  // first line of each contour, for messages
-  std::map<int, std::string> first_name_of_frame;
-  int closed_epi = 0, straight_epi = 0;
-  std::map<std::string, int> open_types;  // type -> contours with a closing gap
-  for (std::size_t f = 0; f < frames.size(); ++f) {
-    std::map<std::pair<int, std::string>, std::vector<const GuidePoint*>> groups;
-    for (const GuidePoint& g : points[f])
-      if (used.count(g.slice)) groups[{g.slice, g.type}].push_back(&g);
-    int index = 0;
-    bool any = false;
-    for (const auto& [key, pts] : groups) {
-      if (!wanted.count(key.second)) continue;  // the septum only closes the epicardium
-      any = true;
-      RawContour rc;
-      rc.frame = static_cast<int>(f);
-      rc.index = index++;
-      rc.line = pts.front()->line;
-      rc.contour.slice = key.first;
-      rc.contour.label = gpfile_label(key.second);
-      for (const GuidePoint* g : pts) rc.contour.points.push_back(g->p);
-      std::vector<Vec3>& c = rc.contour.points;
-      if (key.second == "SAX_LV_EPICARDIAL" && c.size() >= 3) {
-        // biv-me's epicardium is a loop with the septal part missing; the opening is the largest
-        // gap, not necessarily between the last and first points. Rotate it to the ends.
-        std::vector<double> gaps;
-        std::size_t widest = 0;
-        for (std::size_t i = 0; i < c.size(); ++i) {
-          gaps.push_back(distance(c[i], c[(i + 1) % c.size()]));
-          if (gaps[i] > gaps[widest]) widest = i;
-        }
-        const double gap = gaps[widest];
-        std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
-        std::rotate(c.begin(), c.begin() + static_cast<std::ptrdiff_t>((widest + 1) % c.size()), c.end());
-        const auto sep = groups.find({key.first, "SAX_RV_SEPTUM"});
-        if (gap <= 4.0 * gaps[gaps.size() / 2]) {
-          // already closed
-        } else if (sep != groups.end() && !sep->second.empty()) {
-          // The septal wall's RV side completes the LV epicardium (as biv-me fits it): append the
-          // septum in the direction that joins the open ends with the shorter gaps.
-          const Vec3 s0 = sep->second.front()->p, s1 = sep->second.back()->p;
-          const bool reverse = distance(c.back(), s1) + distance(s0, c.front()) <
-                               distance(c.back(), s0) + distance(s1, c.front());
-          std::vector<Vec3> s;
-          for (const GuidePoint* g : sep->second) s.push_back(g->p);
-          if (reverse) std::reverse(s.begin(), s.end());
-          // Septum ends may overshoot the epicardium's open ends; drop points that lead away
-          // from the end they join, or the joint folds over itself.
-          std::size_t b = 0, e = s.size();
-          while (e - b > 1 && distance(s[b + 1], c.back()) < distance(s[b], c.back())) ++b;
-          while (e - b > 1 && distance(s[e - 2], c.front()) < distance(s[e - 1], c.front())) --e;
-          c.insert(c.end(), s.begin() + static_cast<std::ptrdiff_t>(b), s.begin() + static_cast<std::ptrdiff_t>(e));
-          ++closed_epi;
-        } else {
-          ++straight_epi;
-        }
-      } else if (c.size() >= 3) {
-        std::vector<double> gaps;
-        for (std::size_t i = 0; i + 1 < c.size(); ++i) gaps.push_back(distance(c[i], c[i + 1]));
-        std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
-        if (distance(c.back(), c.front()) > 4.0 * gaps[gaps.size() / 2] + 1e-9) ++open_types[key.second];
-      }
-      raw.push_back(std::move(rc));
-    }
-    if (!any) {
-      Location where;
-      where.file = frame_file(f);
-      where.frame = static_cast<int>(f);
-      std::string t;
-      for (const std::string& x : types) t += (t.empty() ? "" : ", ") + x;
-      throw InvalidInput(ErrorCode::EmptyFrame, where, "no " + t + " points on the short-axis slices (" +
-                                                           join_ids(result.slices_used) + ")",
-                         "every frame needs at least one contour; choose other contour types with --type");
-    }
-  }
+  ClosingStats stats;
+  for (std::size_t f = 0; f < frames.size(); ++f)
+    if (!frame_contours(fp.points[f], f, used, wanted, raw, stats)) throw_empty_frame(files[f], f, types, result.slices_used);
 
   if (options.repair) result.repairs = repair_contours(raw);
-  try {
-    result.sequence = build_sequence(raw, static_cast<int>(frames.size()), {}, source, options.stack);
-  } catch (const Error& e) {
-    const int f = e.where().frame;
-    if (f < 0 || static_cast<std::size_t>(f) >= frames.size()) throw;
-    int line = -1;
-    if (e.where().contour >= 0)
-      for (const RawContour& rc : raw)
-        if (rc.frame == f && rc.index == e.where().contour) line = rc.line;
-    relocate(e, frame_file(static_cast<std::size_t>(f)), line);
-  }
+  result.sequence = build_in_files(raw, files, source, options.stack);
   result.sequence.space = "LPS";
-
-  std::string t;
-  for (const std::string& x : types) t += (t.empty() ? "" : ", ") + x + " -> \"" + gpfile_label(x) + "\"";
-  result.notes.push_back("contour types: " + t);
-  result.notes.push_back("slices used (short-axis): " + join_ids(result.slices_used));
-  if (!result.slices_skipped.empty()) {
-    std::string s;
-    for (const GpFileSlice& sl : result.slices)
-      if (!sl.used && count_by_slice.count(sl.id)) s += (s.empty() ? "" : "; ") + std::to_string(sl.id) + ": " + sl.note;
-    result.notes.push_back("slices skipped: " + s);
-  }
-  std::vector<int> empty_ids;
-  for (const GpFileSlice& sl : result.slices)
-    if (!count_by_slice.count(sl.id)) empty_ids.push_back(sl.id);
-  if (!empty_ids.empty()) result.notes.push_back("slices without the chosen contour types: " + join_ids(empty_ids));
-  result.notes.push_back("frames: " + std::to_string(frames.size()) + " files in file-number order; time = frame index x 1 ms "
-                         "(column 7 of the GPFiles is not used)");
-  if (closed_epi) result.notes.push_back("SAX_LV_EPICARDIAL closed with the SAX_RV_SEPTUM points in " +
-                                         std::to_string(closed_epi) + " contours");
-  if (straight_epi)
-    result.notes.push_back("SAX_LV_EPICARDIAL is open and had no SAX_RV_SEPTUM points in " + std::to_string(straight_epi) +
-                           " contours: closed with a straight edge (septum shape lost there)");
-  for (const auto& [type, n] : open_types)
-    result.notes.push_back(type + " looks open in " + std::to_string(n) +
-                           " contours (closing gap > 4x the median point spacing): closed with a straight edge");
+  add_notes(result, types, fp.count_by_slice, stats, frames.size());
   return result;
 }
 

@@ -177,16 +177,7 @@ std::vector<char> untangled_fans(const TriangleMesh& mesh, const std::vector<cha
   return ok;
 }
 
-// Calls f(x, y) once for every pair of boxes (x before y in `boxes`) whose closed boxes overlap and of
-// which at least one is flagged (`flagged` null: every box), as CGAL's box_intersection_d would, through a
-// grid: each box is listed in every cell of about two median box sizes that it meets, and a pair is met
-// in the cell of the larger of their lower corners only (a cell that both boxes meet), so once. A
-// surface's boxes are small and evenly spread; where the cells are crowded (more pair tests than
-// kCrowded per box) it returns false having called nothing, and the caller asks CGAL.
-//
-// `keys` (one per box) lets the grid drop, on data it holds side by side, pairs the caller would drop
-// anyway: two boxes with an equal key other than kNoKey (the caller: a shared vertex whose fan is
-// untangled) are not reported.
+// A grid key that matches nothing (see grid_overlapping_pairs).
 constexpr std::uint32_t kNoKey = 0xFFFFFFFFu;
 
 // std::nextafter(f, -infinity) for f not NaN (the largest float below f), without a library call.
@@ -195,82 +186,117 @@ inline float next_float_down(float f) {
   const float below = std::bit_cast<float>(f > 0.0f ? u - 1 : u + 1);
   return f == 0.0f ? -std::numeric_limits<float>::denorm_min() : below;
 }
-template <class F>
-bool grid_overlapping_pairs(const std::vector<std::array<double, 6>>& box, const std::vector<std::size_t>& info,
-                            const std::vector<char>* flagged, const std::vector<std::array<std::uint32_t, 3>>& keys, F&& f) {
-  constexpr double kCrowded = 64.0;
+
+// Pair tests per box above which the grid gives way to CGAL (see grid_overlapping_pairs).
+constexpr double kCrowded = 64.0;
+
+// The grid over the boxes: its lower corner, cell size and cells per axis, each box's span of cells,
+// and the boxes listed per cell (start: first item of each cell, CSR).
+struct Grid {
+  double lo[3] = {1e300, 1e300, 1e300};
+  double cell = 0.0;
+  std::int64_t size[3] = {0, 0, 0};
+  std::size_t ncells = 0;
+  std::vector<std::array<std::int32_t, 6>> span;  // per box: its cells from (i0, j0, k0) to (i1, j1, k1)
+  std::vector<std::uint32_t> start, items;
+};
+
+// Sets the grid's corner, cell size (two median box sizes, doubled until the block holds at most
+// 8 cells per box) and cells per axis; false when no grid fits.
+bool choose_cells(const std::vector<std::array<double, 6>>& box, Grid& g) {
   const std::size_t n = box.size();
-  if (n < 2) return true;
   // The boxes' extents.
   std::vector<double> sizes(n);
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  double hi[3] = {-1e300, -1e300, -1e300};
   for (std::size_t m = 0; m < n; ++m) {
     double big = 0.0;
     for (int d = 0; d < 3; ++d) {
       big = std::max(big, box[m][d + 3] - box[m][d]);
-      lo[d] = std::min(lo[d], box[m][d]);
+      g.lo[d] = std::min(g.lo[d], box[m][d]);
       hi[d] = std::max(hi[d], box[m][d + 3]);
     }
     sizes[m] = big;
   }
   std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(n / 2), sizes.end());
-  double cell = 2.0 * sizes[n / 2];
-  if (!(cell > 0.0) || !std::isfinite(cell)) return false;
-  std::int64_t size[3];
-  // Cells double until the block holds at most 8 per box.
+  g.cell = 2.0 * sizes[n / 2];
+  if (!(g.cell > 0.0) || !std::isfinite(g.cell)) return false;
   for (;;) {
     double cells = 1.0;
     for (int d = 0; d < 3; ++d) {
-      const double extent = std::floor((hi[d] - lo[d]) / cell) + 1.0;
+      const double extent = std::floor((hi[d] - g.lo[d]) / g.cell) + 1.0;
       if (!(extent < 1e9)) return false;
-      size[d] = static_cast<std::int64_t>(extent);
+      g.size[d] = static_cast<std::int64_t>(extent);
       cells *= extent;
     }
     if (cells <= std::max(4096.0, 8.0 * static_cast<double>(n))) break;
-    cell *= 2.0;
+    g.cell *= 2.0;
   }
-  // Coordinates are at least lo: truncation is the floor. Monotone, so the cell of the larger of two
-  // lower corners is the larger of their cells.
-  auto at = [&](double v, int d) {
-    return static_cast<std::int32_t>(std::min(static_cast<std::int64_t>((v - lo[d]) / cell), size[d] - 1));
-  };
-  std::vector<std::array<std::int32_t, 6>> span(n);  // per box: its cells from (i0, j0, k0) to (i1, j1, k1)
+  g.ncells = static_cast<std::size_t>(g.size[0] * g.size[1] * g.size[2]);
+  return true;
+}
+
+// The cell of coordinate v along axis d. Coordinates are at least lo: truncation is the floor.
+// Monotone, so the cell of the larger of two lower corners is the larger of their cells.
+std::int32_t cell_at(const Grid& g, double v, int d) {
+  return static_cast<std::int32_t>(std::min(static_cast<std::int64_t>((v - g.lo[d]) / g.cell), g.size[d] - 1));
+}
+
+// The index of cell (i, j, k).
+std::size_t cell_index(const Grid& g, std::int64_t i, std::int64_t j, std::int64_t k) {
+  return static_cast<std::size_t>((i * g.size[1] + j) * g.size[2] + k);
+}
+
+// Calls visit(cell index) for every cell that box m meets.
+template <class G>
+void for_each_cell_of(const Grid& g, std::size_t m, G&& visit) {
+  const auto& c = g.span[m];
+  for (std::int64_t i = c[0]; i <= c[3]; ++i)
+    for (std::int64_t j = c[1]; j <= c[4]; ++j)
+      for (std::int64_t k = c[2]; k <= c[5]; ++k) visit(cell_index(g, i, j, k));
+}
+
+// Each box's span of cells.
+void cell_spans(const std::vector<std::array<double, 6>>& box, Grid& g) {
+  const std::size_t n = box.size();
+  g.span.resize(n);
   for (std::size_t m = 0; m < n; ++m)
     for (int d = 0; d < 3; ++d) {
-      span[m][d] = at(box[m][d], d);
-      span[m][d + 3] = at(box[m][d + 3], d);
+      g.span[m][d] = cell_at(g, box[m][d], d);
+      g.span[m][d + 3] = cell_at(g, box[m][d + 3], d);
     }
-  auto index = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return static_cast<std::size_t>((i * size[1] + j) * size[2] + k);
-  };
-  auto visit = [&](std::size_t m, auto&& g) {
-    const auto& c = span[m];
-    for (std::int64_t i = c[0]; i <= c[3]; ++i)
-      for (std::int64_t j = c[1]; j <= c[4]; ++j)
-        for (std::int64_t k = c[2]; k <= c[5]; ++k) g(index(i, j, k));
-  };
-  const auto ncells = static_cast<std::size_t>(size[0] * size[1] * size[2]);
-  std::vector<std::uint32_t> start(ncells + 1, 0);
-  for (std::size_t m = 0; m < n; ++m) visit(m, [&](std::size_t c) { ++start[c + 1]; });
+}
+
+// Lists the boxes per cell (g.start, g.items); false when the cells are crowded (more than
+// kCrowded pair tests per box), then g.items stays empty.
+bool bucket_boxes(Grid& g, std::size_t n) {
+  g.start.assign(g.ncells + 1, 0);
+  for (std::size_t m = 0; m < n; ++m) for_each_cell_of(g, m, [&](std::size_t c) { ++g.start[c + 1]; });
   double tests = 0.0;
-  for (std::size_t c = 0; c < ncells; ++c) tests += 0.5 * static_cast<double>(start[c + 1]) * static_cast<double>(start[c + 1]);
+  for (std::size_t c = 0; c < g.ncells; ++c) tests += 0.5 * static_cast<double>(g.start[c + 1]) * static_cast<double>(g.start[c + 1]);
   if (tests > kCrowded * static_cast<double>(n)) return false;
-  for (std::size_t c = 0; c < ncells; ++c) start[c + 1] += start[c];
-  std::vector<std::uint32_t> items(start[ncells]);
-  {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t m = 0; m < n; ++m) visit(m, [&](std::size_t c) { items[fill[c]++] = static_cast<std::uint32_t>(m); });
-  }
+  for (std::size_t c = 0; c < g.ncells; ++c) g.start[c + 1] += g.start[c];
+  g.items.resize(g.start[g.ncells]);
+  std::vector<std::uint32_t> fill(g.start.begin(), g.start.end() - 1);
+  for (std::size_t m = 0; m < n; ++m) for_each_cell_of(g, m, [&](std::size_t c) { g.items[fill[c]++] = static_cast<std::uint32_t>(m); });
+  return true;
+}
+
+// Per box: 1 when its triangle is flagged (every box when `flagged` is null).
+std::vector<char> flagged_boxes(const std::vector<std::size_t>& info, const std::vector<char>* flagged) {
+  const std::size_t n = info.size();
   std::vector<char> marked(n, 1);
   if (flagged != nullptr)
     for (std::size_t m = 0; m < n; ++m) {
       const std::size_t t = info[m];
       marked[m] = t < flagged->size() && (*flagged)[t] ? 1 : 0;
     }
-  // Each cell's boxes side by side in single precision, rounded outwards (so a pair of closed boxes
-  // that overlap also overlaps here), with their keys, one array per coordinate (lower x, y, z, upper
-  // x, y, z, then the three keys): the pair loop reads its cell in order, four boxes per SSE2 compare
-  // where the CPU has it, and only the pairs that pass go on to the exact test in double precision below.
+  return marked;
+}
+
+// Each box in single precision, rounded outwards (so a pair of closed boxes that overlap also
+// overlaps here): 6 floats per box, lower x, y, z then upper x, y, z.
+std::vector<float> loose_boxes(const std::vector<std::array<double, 6>>& box) {
+  const std::size_t n = box.size();
   std::vector<float> loose_by_box(6 * n);
   for (std::size_t m = 0; m < n; ++m)
     for (int d = 0; d < 3; ++d) {
@@ -281,86 +307,156 @@ bool grid_overlapping_pairs(const std::vector<std::array<double, 6>>& box, const
       loose_by_box[6 * m + static_cast<std::size_t>(d)] = fl;
       loose_by_box[6 * m + 3 + static_cast<std::size_t>(d)] = fh;
     }
-  const std::size_t ni = items.size();
-  // bounds[d * ni + a]: item a's lower (d < 3) or upper corner; item_keys[k * ni + a]. Three more
+  return loose_by_box;
+}
+
+// Each cell's items side by side, one array per coordinate, then the keys, one array per corner.
+struct ItemColumns {
+  // bounds[d * ni + a]: item a's lower (d < 3) or upper corner; keys[k * ni + a]. Three more
   // entries at the end: the last four-wide loads reach past the last item (their lanes are masked).
-  std::vector<float> bounds(6 * ni + 3);
-  std::vector<std::uint32_t> item_keys(3 * ni + 3);
+  std::vector<float> bounds;
+  std::vector<std::uint32_t> keys;
+};
+
+// The items' loose bounds and keys, column by column.
+ItemColumns item_columns(const std::vector<std::uint32_t>& items, const std::vector<float>& loose_by_box,
+                         const std::vector<std::array<std::uint32_t, 3>>& keys) {
+  const std::size_t ni = items.size();
+  ItemColumns cols;
+  cols.bounds.resize(6 * ni + 3);
+  cols.keys.resize(3 * ni + 3);
   for (std::size_t a = 0; a < ni; ++a) {
     const std::size_t m = items[a];
-    for (std::size_t d = 0; d < 6; ++d) bounds[d * ni + a] = loose_by_box[6 * m + d];
-    for (std::size_t k = 0; k < 3; ++k) item_keys[k * ni + a] = keys[m][k];
+    for (std::size_t d = 0; d < 6; ++d) cols.bounds[d * ni + a] = loose_by_box[6 * m + d];
+    for (std::size_t k = 0; k < 3; ++k) cols.keys[k * ni + a] = keys[m][k];
   }
-  const float *lo0 = bounds.data(), *lo1 = lo0 + ni, *lo2 = lo1 + ni, *hi0 = lo2 + ni, *hi1 = hi0 + ni, *hi2 = hi1 + ni;
-  const std::uint32_t *key0 = item_keys.data(), *key1 = key0 + ni, *key2 = key1 + ni;
-  // The cells in blocks of consecutive indices; each block lists its pairs in the serial loop's order
-  // (in parallel where the grid is large), then f sees the blocks' pairs in block order: the calls
-  // and their order are those of one loop over the cells, whatever the thread count.
-  constexpr std::size_t kCellsPerBlock = 512;
-  const std::size_t blocks = (ncells + kCellsPerBlock - 1) / kCellsPerBlock;
-  std::vector<std::vector<std::array<std::uint32_t, 2>>> found(blocks);
-  auto scan = [&](std::size_t block) {
-    auto& out = found[block];
-    const std::size_t c_end = std::min(ncells, (block + 1) * kCellsPerBlock);
-    for (std::size_t c = block * kCellsPerBlock; c < c_end; ++c) {
-      const std::uint32_t e = start[c + 1];
-      if (e - start[c] < 2) continue;
-      const auto ck = static_cast<std::int64_t>(c % static_cast<std::size_t>(size[2]));
-      const auto cj = static_cast<std::int64_t>((c / static_cast<std::size_t>(size[2])) % static_cast<std::size_t>(size[1]));
-      const auto ci = static_cast<std::int64_t>(c / static_cast<std::size_t>(size[2] * size[1]));
-      for (std::uint32_t a = start[c]; a < e; ++a) {
-        const std::uint32_t p = items[a];
-        const auto& x = box[p];
-        const auto& sx = span[p];
-        // Item b of the cell whose loose box overlaps a's and shares no key with it.
-        auto exact = [&](std::uint32_t b) {
-          const std::uint32_t q = items[b];
-          const auto& y = box[q];
-          if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) return;
-          if (!marked[p] && !marked[q]) return;
-          // Met only in the cell of the larger lower corner.
-          const auto& sy = span[q];
-          if (std::max(sx[0], sy[0]) != ci || std::max(sx[1], sy[1]) != cj || std::max(sx[2], sy[2]) != ck) return;
-          out.push_back({std::min(p, q), std::max(p, q)});
-        };
-        const std::uint32_t xk[3] = {key0[a], key1[a], key2[a]};
-        std::uint32_t b = a + 1;
-#if defined(__SSE2__)
-        {
-          const __m128 xl0 = _mm_set1_ps(lo0[a]), xl1 = _mm_set1_ps(lo1[a]), xl2 = _mm_set1_ps(lo2[a]);
-          const __m128 xh0 = _mm_set1_ps(hi0[a]), xh1 = _mm_set1_ps(hi1[a]), xh2 = _mm_set1_ps(hi2[a]);
-          for (; b < e; b += 4) {
-            // Not (x.lo > y.hi or y.lo > x.hi) in any coordinate: the scalar test below, lane by lane.
-            __m128 keep = _mm_and_ps(_mm_cmpngt_ps(xl0, _mm_loadu_ps(hi0 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo0 + b), xh0));
-            keep = _mm_and_ps(keep, _mm_and_ps(_mm_cmpngt_ps(xl1, _mm_loadu_ps(hi1 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo1 + b), xh1)));
-            keep = _mm_and_ps(keep, _mm_and_ps(_mm_cmpngt_ps(xl2, _mm_loadu_ps(hi2 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo2 + b), xh2)));
-            int lanes = _mm_movemask_ps(keep) & (e - b >= 4 ? 15 : (1 << (e - b)) - 1);  // items of the cell only
-            if (lanes == 0) continue;
-            const __m128i y0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key0 + b));
-            const __m128i y1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key1 + b));
-            const __m128i y2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key2 + b));
-            __m128i shared = _mm_setzero_si128();
-            for (std::uint32_t k : xk)
-              if (k != kNoKey) {
-                const __m128i v = _mm_set1_epi32(static_cast<int>(k));
-                shared = _mm_or_si128(shared, _mm_or_si128(_mm_cmpeq_epi32(v, y0), _mm_or_si128(_mm_cmpeq_epi32(v, y1), _mm_cmpeq_epi32(v, y2))));
-              }
-            lanes &= ~_mm_movemask_ps(_mm_castsi128_ps(shared));
-            for (; lanes != 0; lanes &= lanes - 1) exact(b + static_cast<std::uint32_t>(__builtin_ctz(static_cast<unsigned>(lanes))));
-          }
-        }
-#endif
-        for (; b < e; ++b) {  // without SSE2
-          if (lo0[a] > hi0[b] || lo0[b] > hi0[a] || lo1[a] > hi1[b] || lo1[b] > hi1[a] || lo2[a] > hi2[b] || lo2[b] > hi2[a])
-            continue;
-          bool shared = false;
-          for (std::uint32_t k : xk)
-            if (k != kNoKey && (k == key0[b] || k == key1[b] || k == key2[b])) shared = true;
-          if (!shared) exact(b);
-        }
-      }
-    }
+  return cols;
+}
+
+// What the pair loop reads: the exact boxes, the grid, the flags, and the item columns.
+struct PairScan {
+  const std::vector<std::array<double, 6>>& box;
+  const Grid& grid;
+  const std::vector<char>& marked;
+  const float *lo0, *lo1, *lo2, *hi0, *hi1, *hi2;
+  const std::uint32_t *key0, *key1, *key2;
+};
+
+// The pair loop's view of the boxes, the grid, the flags and the columns (cols must outlive it).
+PairScan pair_scan(const std::vector<std::array<double, 6>>& box, const Grid& g, const std::vector<char>& marked,
+                   const ItemColumns& cols) {
+  const std::size_t ni = g.items.size();
+  const float* lo0 = cols.bounds.data();
+  const std::uint32_t* key0 = cols.keys.data();
+  return {box, g, marked, lo0, lo0 + ni, lo0 + 2 * ni, lo0 + 3 * ni, lo0 + 4 * ni, lo0 + 5 * ni, key0, key0 + ni, key0 + 2 * ni};
+}
+
+// Appends to `out` the pairs (a, b) with a's item first, b after a in cell c (items start[c]..e),
+// whose loose boxes overlap, that share no key, whose exact boxes overlap with one flagged, and
+// that are met in this cell (ci, cj, ck), the cell of the larger lower corner.
+void scan_item(const PairScan& s, std::uint32_t a, std::uint32_t e, std::int64_t ci, std::int64_t cj, std::int64_t ck,
+               std::vector<std::array<std::uint32_t, 2>>& out) {
+  const float *lo0 = s.lo0, *lo1 = s.lo1, *lo2 = s.lo2, *hi0 = s.hi0, *hi1 = s.hi1, *hi2 = s.hi2;
+  const std::uint32_t *key0 = s.key0, *key1 = s.key1, *key2 = s.key2;
+  const std::uint32_t p = s.grid.items[a];
+  const auto& x = s.box[p];
+  const auto& sx = s.grid.span[p];
+  // Item b of the cell whose loose box overlaps a's and shares no key with it.
+  auto exact = [&](std::uint32_t b) {
+    const std::uint32_t q = s.grid.items[b];
+    const auto& y = s.box[q];
+    if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) return;
+    if (!s.marked[p] && !s.marked[q]) return;
+    // Met only in the cell of the larger lower corner.
+    const auto& sy = s.grid.span[q];
+    if (std::max(sx[0], sy[0]) != ci || std::max(sx[1], sy[1]) != cj || std::max(sx[2], sy[2]) != ck) return;
+    out.push_back({std::min(p, q), std::max(p, q)});
   };
+  const std::uint32_t xk[3] = {key0[a], key1[a], key2[a]};
+  std::uint32_t b = a + 1;
+#if defined(__SSE2__)
+  {
+    const __m128 xl0 = _mm_set1_ps(lo0[a]), xl1 = _mm_set1_ps(lo1[a]), xl2 = _mm_set1_ps(lo2[a]);
+    const __m128 xh0 = _mm_set1_ps(hi0[a]), xh1 = _mm_set1_ps(hi1[a]), xh2 = _mm_set1_ps(hi2[a]);
+    for (; b < e; b += 4) {
+      // Not (x.lo > y.hi or y.lo > x.hi) in any coordinate: the scalar test below, lane by lane.
+      __m128 keep = _mm_and_ps(_mm_cmpngt_ps(xl0, _mm_loadu_ps(hi0 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo0 + b), xh0));
+      keep = _mm_and_ps(keep, _mm_and_ps(_mm_cmpngt_ps(xl1, _mm_loadu_ps(hi1 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo1 + b), xh1)));
+      keep = _mm_and_ps(keep, _mm_and_ps(_mm_cmpngt_ps(xl2, _mm_loadu_ps(hi2 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo2 + b), xh2)));
+      int lanes = _mm_movemask_ps(keep) & (e - b >= 4 ? 15 : (1 << (e - b)) - 1);  // items of the cell only
+      if (lanes == 0) continue;
+      const __m128i y0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key0 + b));
+      const __m128i y1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key1 + b));
+      const __m128i y2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key2 + b));
+      __m128i shared = _mm_setzero_si128();
+      for (std::uint32_t k : xk)
+        if (k != kNoKey) {
+          const __m128i v = _mm_set1_epi32(static_cast<int>(k));
+          shared = _mm_or_si128(shared, _mm_or_si128(_mm_cmpeq_epi32(v, y0), _mm_or_si128(_mm_cmpeq_epi32(v, y1), _mm_cmpeq_epi32(v, y2))));
+        }
+      lanes &= ~_mm_movemask_ps(_mm_castsi128_ps(shared));
+      for (; lanes != 0; lanes &= lanes - 1) exact(b + static_cast<std::uint32_t>(__builtin_ctz(static_cast<unsigned>(lanes))));
+    }
+  }
+#endif
+  for (; b < e; ++b) {  // without SSE2
+    if (lo0[a] > hi0[b] || lo0[b] > hi0[a] || lo1[a] > hi1[b] || lo1[b] > hi1[a] || lo2[a] > hi2[b] || lo2[b] > hi2[a])
+      continue;
+    bool shared = false;
+    for (std::uint32_t k : xk)
+      if (k != kNoKey && (k == key0[b] || k == key1[b] || k == key2[b])) shared = true;
+    if (!shared) exact(b);
+  }
+}
+
+// The cells in blocks of consecutive indices.
+constexpr std::size_t kCellsPerBlock = 512;
+
+// Lists the pairs of one block of cells into `out`, in the order of one loop over its cells.
+void scan_block(const PairScan& s, std::size_t block, std::vector<std::array<std::uint32_t, 2>>& out) {
+  const Grid& g = s.grid;
+  const std::size_t c_end = std::min(g.ncells, (block + 1) * kCellsPerBlock);
+  for (std::size_t c = block * kCellsPerBlock; c < c_end; ++c) {
+    const std::uint32_t e = g.start[c + 1];
+    if (e - g.start[c] < 2) continue;
+    const auto ck = static_cast<std::int64_t>(c % static_cast<std::size_t>(g.size[2]));
+    const auto cj = static_cast<std::int64_t>((c / static_cast<std::size_t>(g.size[2])) % static_cast<std::size_t>(g.size[1]));
+    const auto ci = static_cast<std::int64_t>(c / static_cast<std::size_t>(g.size[2] * g.size[1]));
+    for (std::uint32_t a = g.start[c]; a < e; ++a) scan_item(s, a, e, ci, cj, ck, out);
+  }
+}
+
+// Calls f(x, y) once for every pair of boxes (x before y in `boxes`) whose closed boxes overlap and of
+// which at least one is flagged (`flagged` null: every box), as CGAL's box_intersection_d would, through a
+// grid: each box is listed in every cell of about two median box sizes that it meets, and a pair is met
+// in the cell of the larger of their lower corners only (a cell that both boxes meet), so once. A
+// surface's boxes are small and evenly spread; where the cells are crowded (more pair tests than
+// kCrowded per box) it returns false having called nothing, and the caller asks CGAL.
+//
+// `keys` (one per box) lets the grid drop, on data it holds side by side, pairs the caller would drop
+// anyway: two boxes with an equal key other than kNoKey (the caller: a shared vertex whose fan is
+// untangled) are not reported.
+template <class F>
+bool grid_overlapping_pairs(const std::vector<std::array<double, 6>>& box, const std::vector<std::size_t>& info,
+                            const std::vector<char>* flagged, const std::vector<std::array<std::uint32_t, 3>>& keys, F&& f) {
+  const std::size_t n = box.size();
+  if (n < 2) return true;
+  Grid g;
+  if (!choose_cells(box, g)) return false;
+  cell_spans(box, g);
+  if (!bucket_boxes(g, n)) return false;
+  const std::vector<char> marked = flagged_boxes(info, flagged);
+  // Each cell's boxes side by side in single precision with their keys: the pair loop reads its cell
+  // in order, four boxes per SSE2 compare where the CPU has it, and only the pairs that pass go on to
+  // the exact test in double precision.
+  const ItemColumns cols = item_columns(g.items, loose_boxes(box), keys);
+  const PairScan s = pair_scan(box, g, marked, cols);
+  // Each block lists its pairs in the serial loop's order (in parallel where the grid is large),
+  // then f sees the blocks' pairs in block order: the calls and their order are those of one loop
+  // over the cells, whatever the thread count.
+  const std::size_t blocks = (g.ncells + kCellsPerBlock - 1) / kCellsPerBlock;
+  std::vector<std::vector<std::array<std::uint32_t, 2>>> found(blocks);
+  auto scan = [&](std::size_t block) { scan_block(s, block, found[block]); };
   if (n >= 8192 && blocks > 1)
     tbb::parallel_for(std::size_t{0}, blocks, scan);
   else
@@ -499,18 +595,12 @@ bool intersects_any(const std::vector<Vec3>& positions, const std::vector<Triang
   return false;
 }
 
-TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& options) {
-  TopologyReport r;
-  const std::size_t nv = mesh.positions.size();
-  r.vertices = nv;
-  r.triangles = mesh.triangles.size();
-  if (mesh.triangles.empty()) {
-    r.faults.push_back("the mesh has no triangles");
-    r.genus = -1;
-    return r;
-  }
+namespace {
 
-  // Valid, degenerate and duplicate triangles.
+// Counts invalid, degenerate and duplicate triangles and unreferenced vertices into r; returns the
+// indices of the valid triangles.
+std::vector<std::size_t> check_triangles(const TriangleMesh& mesh, TopologyReport& r) {
+  const std::size_t nv = mesh.positions.size();
   std::vector<std::size_t> tris;  // indices of valid triangles
   tris.reserve(mesh.triangles.size());
   std::vector<std::array<std::uint32_t, 3>> sorted_keys;
@@ -532,19 +622,24 @@ TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& o
   std::sort(sorted_keys.begin(), sorted_keys.end());
   for (std::size_t i = 1; i < sorted_keys.size(); ++i) r.duplicate_triangles += sorted_keys[i] == sorted_keys[i - 1];
   r.unreferenced_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), 0));
+  return tris;
+}
 
-  // Duplicate vertices: equal positions after a lexicographic sort.
-  {
-    std::vector<std::uint32_t> order(nv);
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      const Vec3 p = mesh.positions[a], q = mesh.positions[b];
-      return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
-    });
-    for (std::size_t i = 1; i < order.size(); ++i) r.duplicate_vertices += mesh.positions[order[i]] == mesh.positions[order[i - 1]];
-  }
+// Duplicate vertices: equal positions after a lexicographic sort.
+std::size_t count_duplicate_vertices(const TriangleMesh& mesh) {
+  std::size_t duplicates = 0;
+  std::vector<std::uint32_t> order(mesh.positions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const Vec3 p = mesh.positions[a], q = mesh.positions[b];
+    return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
+  });
+  for (std::size_t i = 1; i < order.size(); ++i) duplicates += mesh.positions[order[i]] == mesh.positions[order[i - 1]];
+  return duplicates;
+}
 
-  // Edges: sort the directed edges by undirected key; each run is one edge.
+// The valid triangles' directed edges sorted by undirected key: each run is one edge.
+std::vector<HalfEdge> sorted_half_edges(const TriangleMesh& mesh, const std::vector<std::size_t>& tris) {
   std::vector<HalfEdge> he;
   he.reserve(3 * tris.size());
   for (std::size_t i : tris) {
@@ -557,158 +652,181 @@ TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& o
   std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return std::tie(x.lo, x.hi, x.tri, x.forward) < std::tie(y.lo, y.hi, y.tri, y.forward);
   });
-  UnionFind comp(mesh.triangles.size());
+  return he;
+}
+
+// The undirected edges, as runs of the sorted half-edges.
+struct EdgeTable {
   // Orientation graph: two-triangle edges; parity_link = true when the pair must differ in flip.
-  std::vector<std::vector<std::pair<std::size_t, bool>>> adj(mesh.triangles.size());
+  std::vector<std::vector<std::pair<std::size_t, bool>>> adj;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary;
   std::vector<std::size_t> edge_start;  // index into he of each edge's first half-edge
   std::vector<std::size_t> edge_size;   // number of triangles on each edge
+};
+
+// Groups the half-edges into edges, counts non-manifold and misoriented edges into r and joins the
+// triangles of each edge in `comp`.
+EdgeTable scan_edges(const std::vector<HalfEdge>& he, std::size_t triangle_count, UnionFind& comp, TopologyReport& r) {
+  EdgeTable t;
+  t.adj.resize(triangle_count);
   for (std::size_t s = 0; s < he.size();) {
     std::size_t e = s;
     while (e < he.size() && he[e].lo == he[s].lo && he[e].hi == he[s].hi) ++e;
     const std::size_t n = e - s;
-    edge_start.push_back(s);
-    edge_size.push_back(n);
-    if (n == 1) boundary.push_back({he[s].lo, he[s].hi});
+    t.edge_start.push_back(s);
+    t.edge_size.push_back(n);
+    if (n == 1) t.boundary.push_back({he[s].lo, he[s].hi});
     if (n > 2) ++r.nonmanifold_edges;
     if (n == 2) {
       const bool same_way = he[s].forward == he[s + 1].forward;
       if (same_way) ++r.misoriented_edges;
-      adj[he[s].tri].push_back({he[s + 1].tri, same_way});
-      adj[he[s + 1].tri].push_back({he[s].tri, same_way});
+      t.adj[he[s].tri].push_back({he[s + 1].tri, same_way});
+      t.adj[he[s + 1].tri].push_back({he[s].tri, same_way});
     }
     for (std::size_t k = s + 1; k < e; ++k) comp.unite(he[s].tri, he[k].tri);
     s = e;
   }
-  r.edges = edge_start.size();
-  r.boundary_edges = boundary.size();
+  return t;
+}
 
-  // Orientation: propagate a flip parity over two-triangle edges; the minority of each patch is
-  // "against its neighbours".
-  {
-    std::vector<int> parity(mesh.triangles.size(), -1);
-    std::vector<std::size_t> stack;
-    for (std::size_t seed : tris) {
-      if (parity[seed] >= 0) continue;
-      std::size_t count[2] = {0, 0};
-      parity[seed] = 0;
-      stack.push_back(seed);
-      while (!stack.empty()) {
-        const std::size_t t = stack.back();
-        stack.pop_back();
-        ++count[parity[t]];
-        for (const auto& [u, flip] : adj[t]) {
-          const int want = parity[t] ^ static_cast<int>(flip);
-          if (parity[u] < 0) {
-            parity[u] = want;
-            stack.push_back(u);
-          } else if (parity[u] != want) {
-            r.orientable = false;
-          }
+// Orientation: propagates a flip parity over two-triangle edges; the minority of each patch is
+// "against its neighbours" (r.flipped_triangles); a contradiction clears r.orientable.
+void check_orientation(const std::vector<std::size_t>& tris, const EdgeTable& edges, TopologyReport& r) {
+  std::vector<int> parity(edges.adj.size(), -1);
+  std::vector<std::size_t> stack;
+  for (std::size_t seed : tris) {
+    if (parity[seed] >= 0) continue;
+    std::size_t count[2] = {0, 0};
+    parity[seed] = 0;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const std::size_t t = stack.back();
+      stack.pop_back();
+      ++count[parity[t]];
+      for (const auto& [u, flip] : edges.adj[t]) {
+        const int want = parity[t] ^ static_cast<int>(flip);
+        if (parity[u] < 0) {
+          parity[u] = want;
+          stack.push_back(u);
+        } else if (parity[u] != want) {
+          r.orientable = false;
         }
       }
-      r.flipped_triangles += std::min(count[0], count[1]);
     }
+    r.flipped_triangles += std::min(count[0], count[1]);
   }
+}
 
-  // Vertex manifoldness: the triangles around a vertex must form one fan, i.e. be connected
-  // through edges incident to that vertex.
-  {
-    std::vector<std::size_t> start(nv + 1, 0);
-    for (std::size_t i : tris)
-      for (std::uint32_t v : mesh.triangles[i]) ++start[v + 1];
-    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-    std::vector<std::size_t> fan(start.back()), fill(start.begin(), start.end() - 1);
-    for (std::size_t i : tris)
-      for (std::uint32_t v : mesh.triangles[i]) fan[fill[v]++] = i;
-    std::vector<std::pair<std::uint32_t, std::size_t>> spokes;  // (other vertex, local triangle)
-    for (std::size_t v = 0; v < nv; ++v) {
-      const std::size_t d = start[v + 1] - start[v];
-      if (d < 2) continue;
-      UnionFind local(d);
-      spokes.clear();
-      for (std::size_t k = 0; k < d; ++k)
-        for (std::uint32_t w : mesh.triangles[fan[start[v] + k]])
-          if (w != v) spokes.push_back({w, k});
-      std::sort(spokes.begin(), spokes.end());
-      for (std::size_t k = 1; k < spokes.size(); ++k)
-        if (spokes[k].first == spokes[k - 1].first) local.unite(spokes[k].second, spokes[k - 1].second);
-      std::size_t fans = 0;
-      for (std::size_t k = 0; k < d; ++k) fans += local.find(k) == k;
-      if (fans > 1) ++r.nonmanifold_vertices;
-    }
+// Vertex manifoldness: the triangles around a vertex must form one fan, i.e. be connected
+// through edges incident to that vertex. Returns the number of vertices that fail.
+std::size_t count_nonmanifold_vertices(const TriangleMesh& mesh, const std::vector<std::size_t>& tris) {
+  const std::size_t nv = mesh.positions.size();
+  std::size_t nonmanifold = 0;
+  std::vector<std::size_t> start(nv + 1, 0);
+  for (std::size_t i : tris)
+    for (std::uint32_t v : mesh.triangles[i]) ++start[v + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::size_t> fan(start.back()), fill(start.begin(), start.end() - 1);
+  for (std::size_t i : tris)
+    for (std::uint32_t v : mesh.triangles[i]) fan[fill[v]++] = i;
+  std::vector<std::pair<std::uint32_t, std::size_t>> spokes;  // (other vertex, local triangle)
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::size_t d = start[v + 1] - start[v];
+    if (d < 2) continue;
+    UnionFind local(d);
+    spokes.clear();
+    for (std::size_t k = 0; k < d; ++k)
+      for (std::uint32_t w : mesh.triangles[fan[start[v] + k]])
+        if (w != v) spokes.push_back({w, k});
+    std::sort(spokes.begin(), spokes.end());
+    for (std::size_t k = 1; k < spokes.size(); ++k)
+      if (spokes[k].first == spokes[k - 1].first) local.unite(spokes[k].second, spokes[k - 1].second);
+    std::size_t fans = 0;
+    for (std::size_t k = 0; k < d; ++k) fans += local.find(k) == k;
+    if (fans > 1) ++nonmanifold;
   }
+  return nonmanifold;
+}
 
-  // Components with their Euler characteristic and boundary loops.
-  {
-    std::vector<std::size_t> comp_of(mesh.triangles.size(), 0);
-    std::vector<long> comp_index(mesh.triangles.size(), -1);
-    for (std::size_t i : tris) {
-      const std::size_t root = comp.find(i);
-      if (comp_index[root] < 0) {
-        comp_index[root] = static_cast<long>(r.components.size());
-        r.components.emplace_back();
-      }
-      comp_of[i] = static_cast<std::size_t>(comp_index[root]);
-      ++r.components[comp_of[i]].triangles;
+// Creates r.components (numbered by first triangle) with their triangle counts; returns each
+// triangle's component.
+std::vector<std::size_t> assign_components(const std::vector<std::size_t>& tris, std::size_t triangle_count,
+                                           UnionFind& comp, TopologyReport& r) {
+  std::vector<std::size_t> comp_of(triangle_count, 0);
+  std::vector<long> comp_index(triangle_count, -1);
+  for (std::size_t i : tris) {
+    const std::size_t root = comp.find(i);
+    if (comp_index[root] < 0) {
+      comp_index[root] = static_cast<long>(r.components.size());
+      r.components.emplace_back();
     }
-    std::vector<char> comp_manifold(r.components.size(), 1);
-    for (std::size_t k = 0; k < edge_start.size(); ++k) {
-      const std::size_t c = comp_of[he[edge_start[k]].tri];
-      ++r.components[c].edges;
-      if (edge_size[k] > 2) comp_manifold[c] = 0;
-    }
-    // Vertices per component (a vertex shared by two components counts in both).
-    std::vector<std::pair<std::size_t, std::uint32_t>> cv;
-    cv.reserve(3 * tris.size());
-    for (std::size_t i : tris)
-      for (std::uint32_t v : mesh.triangles[i]) cv.push_back({comp_of[i], v});
-    std::sort(cv.begin(), cv.end());
-    cv.erase(std::unique(cv.begin(), cv.end()), cv.end());
-    for (const auto& [c, v] : cv) ++r.components[c].vertices;
-    // Boundary loops: connected groups of boundary edges.
-    UnionFind bl(nv);
-    for (const auto& [a, b] : boundary) bl.unite(a, b);
-    std::vector<std::pair<std::size_t, std::size_t>> loop_roots;  // (component, root vertex)
-    for (std::size_t k = 0; k < edge_start.size(); ++k)
-      if (edge_size[k] == 1) loop_roots.push_back({comp_of[he[edge_start[k]].tri], bl.find(he[edge_start[k]].lo)});
-    std::sort(loop_roots.begin(), loop_roots.end());
-    loop_roots.erase(std::unique(loop_roots.begin(), loop_roots.end()), loop_roots.end());
-    for (const auto& [c, root] : loop_roots) ++r.components[c].boundary_loops;
-    r.genus = (r.nonmanifold_vertices == 0 && r.orientable) ? 0 : -1;
-    for (std::size_t c = 0; c < r.components.size(); ++c) {
-      ComponentTopology& ct = r.components[c];
-      ct.euler = static_cast<long>(ct.vertices) - static_cast<long>(ct.edges) + static_cast<long>(ct.triangles);
-      const long twice_genus = 2 - ct.euler - static_cast<long>(ct.boundary_loops);
-      if (comp_manifold[c] && r.nonmanifold_vertices == 0 && r.orientable && twice_genus >= 0 && twice_genus % 2 == 0)
-        ct.genus = static_cast<int>(twice_genus / 2);
-      if (ct.genus < 0 || r.genus < 0)
-        r.genus = -1;
-      else
-        r.genus += ct.genus;
-    }
+    comp_of[i] = static_cast<std::size_t>(comp_index[root]);
+    ++r.components[comp_of[i]].triangles;
   }
+  return comp_of;
+}
 
-  // Signed volume over the valid triangles (divergence theorem, centred for conditioning).
-  {
-    Vec3 ref{};
-    for (const Vec3& p : mesh.positions) ref += p;
-    if (nv > 0) ref = ref / static_cast<double>(nv);
-    double v = 0.0;
-    for (std::size_t i : tris) {
-      const Triangle& t = mesh.triangles[i];
-      v += dot(mesh.positions[t[0]] - ref, cross(mesh.positions[t[1]] - ref, mesh.positions[t[2]] - ref));
-    }
-    r.signed_volume = v / 6.0;
+// Counts each component's edges, vertices (a vertex shared by two components counts in both) and
+// boundary loops (connected groups of boundary edges); returns per component whether its edges are manifold.
+std::vector<char> count_component_elements(const TriangleMesh& mesh, const std::vector<std::size_t>& tris,
+                                           const std::vector<HalfEdge>& he, const EdgeTable& edges,
+                                           const std::vector<std::size_t>& comp_of, TopologyReport& r) {
+  std::vector<char> comp_manifold(r.components.size(), 1);
+  for (std::size_t k = 0; k < edges.edge_start.size(); ++k) {
+    const std::size_t c = comp_of[he[edges.edge_start[k]].tri];
+    ++r.components[c].edges;
+    if (edges.edge_size[k] > 2) comp_manifold[c] = 0;
   }
+  std::vector<std::pair<std::size_t, std::uint32_t>> cv;
+  cv.reserve(3 * tris.size());
+  for (std::size_t i : tris)
+    for (std::uint32_t v : mesh.triangles[i]) cv.push_back({comp_of[i], v});
+  std::sort(cv.begin(), cv.end());
+  cv.erase(std::unique(cv.begin(), cv.end()), cv.end());
+  for (const auto& [c, v] : cv) ++r.components[c].vertices;
+  UnionFind bl(mesh.positions.size());
+  for (const auto& [a, b] : edges.boundary) bl.unite(a, b);
+  std::vector<std::pair<std::size_t, std::size_t>> loop_roots;  // (component, root vertex)
+  for (std::size_t k = 0; k < edges.edge_start.size(); ++k)
+    if (edges.edge_size[k] == 1) loop_roots.push_back({comp_of[he[edges.edge_start[k]].tri], bl.find(he[edges.edge_start[k]].lo)});
+  std::sort(loop_roots.begin(), loop_roots.end());
+  loop_roots.erase(std::unique(loop_roots.begin(), loop_roots.end()), loop_roots.end());
+  for (const auto& [c, root] : loop_roots) ++r.components[c].boundary_loops;
+  return comp_manifold;
+}
 
-  std::vector<std::pair<std::size_t, std::size_t>> first_pairs;
-  if (options.self_intersections) {
-    r.self_intersections = count_self_intersections(mesh, &first_pairs, 3);
-    r.self_intersections_checked = true;
+// Each component's Euler characteristic and genus (χ = 2 − 2g − b), and their sum in r.genus.
+void component_genus(const std::vector<char>& comp_manifold, TopologyReport& r) {
+  r.genus = (r.nonmanifold_vertices == 0 && r.orientable) ? 0 : -1;
+  for (std::size_t c = 0; c < r.components.size(); ++c) {
+    ComponentTopology& ct = r.components[c];
+    ct.euler = static_cast<long>(ct.vertices) - static_cast<long>(ct.edges) + static_cast<long>(ct.triangles);
+    const long twice_genus = 2 - ct.euler - static_cast<long>(ct.boundary_loops);
+    if (comp_manifold[c] && r.nonmanifold_vertices == 0 && r.orientable && twice_genus >= 0 && twice_genus % 2 == 0)
+      ct.genus = static_cast<int>(twice_genus / 2);
+    if (ct.genus < 0 || r.genus < 0)
+      r.genus = -1;
+    else
+      r.genus += ct.genus;
   }
+}
 
-  // Faults, in words.
+// Signed volume over the valid triangles (divergence theorem, centred for conditioning).
+double signed_volume(const TriangleMesh& mesh, const std::vector<std::size_t>& tris) {
+  const std::size_t nv = mesh.positions.size();
+  Vec3 ref{};
+  for (const Vec3& p : mesh.positions) ref += p;
+  if (nv > 0) ref = ref / static_cast<double>(nv);
+  double v = 0.0;
+  for (std::size_t i : tris) {
+    const Triangle& t = mesh.triangles[i];
+    v += dot(mesh.positions[t[0]] - ref, cross(mesh.positions[t[1]] - ref, mesh.positions[t[2]] - ref));
+  }
+  return v / 6.0;
+}
+
+// The faults of r, in words, appended to r.faults.
+void describe_faults(TopologyReport& r, const std::vector<std::pair<std::size_t, std::size_t>>& first_pairs) {
   auto& f = r.faults;
   if (r.invalid_triangles > 0)
     f.push_back(plural(r.invalid_triangles, "invalid triangle", "invalid triangles") +
@@ -747,6 +865,44 @@ TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& o
     f.push_back(fmt::format("{} of triangles intersect (first: {})",
                             plural(r.self_intersections, "pair", "pairs"), list));
   }
+}
+
+}  // namespace
+
+TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& options) {
+  TopologyReport r;
+  r.vertices = mesh.positions.size();
+  r.triangles = mesh.triangles.size();
+  if (mesh.triangles.empty()) {
+    r.faults.push_back("the mesh has no triangles");
+    r.genus = -1;
+    return r;
+  }
+  const std::vector<std::size_t> tris = check_triangles(mesh, r);  // the valid triangles
+  r.duplicate_vertices = count_duplicate_vertices(mesh);
+
+  // Edges, and components through them.
+  const std::vector<HalfEdge> he = sorted_half_edges(mesh, tris);
+  UnionFind comp(mesh.triangles.size());
+  const EdgeTable edges = scan_edges(he, mesh.triangles.size(), comp, r);
+  r.edges = edges.edge_start.size();
+  r.boundary_edges = edges.boundary.size();
+
+  check_orientation(tris, edges, r);
+  r.nonmanifold_vertices = count_nonmanifold_vertices(mesh, tris);
+
+  // Components with their Euler characteristic and boundary loops.
+  const std::vector<std::size_t> comp_of = assign_components(tris, mesh.triangles.size(), comp, r);
+  const std::vector<char> comp_manifold = count_component_elements(mesh, tris, he, edges, comp_of, r);
+  component_genus(comp_manifold, r);
+
+  r.signed_volume = signed_volume(mesh, tris);
+  std::vector<std::pair<std::size_t, std::size_t>> first_pairs;
+  if (options.self_intersections) {
+    r.self_intersections = count_self_intersections(mesh, &first_pairs, 3);
+    r.self_intersections_checked = true;
+  }
+  describe_faults(r, first_pairs);
   return r;
 }
 

@@ -88,176 +88,239 @@ double angle_at(const Vec3& p, const Vec3& q, const Vec3& r) {
   return std::atan2(norm(cross(u, w)), dot(u, w));
 }
 
-}  // namespace
+using Edge = std::pair<std::uint32_t, std::uint32_t>;
+constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
-std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
-                                const FlipOptions& options) {
-  using Edge = std::pair<std::uint32_t, std::uint32_t>;
-  auto& tris = mesh.triangles;
-  // Directed edge a→b → triangle holding it, per vertex a: a few entries each, scanned in order (a
-  // linear scan beats a hash). All vertices' lists lie in one array, each with room for its first
-  // degree and some more (a flip adds one edge at each of its two far vertices); a list that outgrows
-  // its room has the whole array laid out again with more, the entries kept in their order.
-  const std::size_t nv = mesh.positions.size();
-  constexpr std::size_t none = static_cast<std::size_t>(-1);
-  struct Owner {
-    std::uint32_t to;
-    std::size_t tri;
-  };
-  std::vector<std::uint32_t> first(nv + 1, 0), count(nv, 0);
-  std::vector<Owner> owners;
-  auto lay_out = [&](std::uint32_t slack) {
-    std::vector<std::uint32_t> new_first(nv + 1, 0);
-    for (std::size_t v = 0; v < nv; ++v) new_first[v + 1] = new_first[v] + count[v] + slack;
-    std::vector<Owner> moved(new_first[nv]);
-    if (!owners.empty())
-      for (std::size_t v = 0; v < nv; ++v)
-        std::copy_n(owners.begin() + first[v], count[v], moved.begin() + new_first[v]);
-    first.swap(new_first);
-    owners.swap(moved);
-  };
+// Directed edge a→b → triangle holding it, per vertex a: a few entries each, scanned in order (a
+// linear scan beats a hash). All vertices' lists lie in one array, each with room for its first
+// degree and some more (a flip adds one edge at each of its two far vertices); a list that outgrows
+// its room has the whole array laid out again with more, the entries kept in their order.
+struct Owner {
+  std::uint32_t to;
+  std::size_t tri;
+};
+struct OwnerTable {
+  std::size_t nv = 0;
   std::uint32_t slack = 4;
-  for (const Triangle& t : tris)
-    for (std::uint32_t v : t) ++count[v];
-  lay_out(slack);
-  std::fill(count.begin(), count.end(), 0);
-  auto owner_of = [&](std::uint32_t a, std::uint32_t b) {
-    for (std::uint32_t k = first[a], e = first[a] + count[a]; k < e; ++k)
-      if (owners[k].to == b) return owners[k].tri;
-    return none;
-  };
-  auto set_owner = [&](std::uint32_t a, std::uint32_t b, std::size_t t) {
-    for (std::uint32_t k = first[a], e = first[a] + count[a]; k < e; ++k)
-      if (owners[k].to == b) {
-        owners[k].tri = t;
-        return;
-      }
-    if (first[a] + count[a] == first[a + 1]) {
-      slack *= 2;
-      lay_out(slack);
+  std::vector<std::uint32_t> first, count;  // per vertex: its list's start and length
+  std::vector<Owner> owners;
+};
+
+// Lays the lists out again with `slack` free entries each, the entries kept in their order.
+void lay_out(OwnerTable& o, std::uint32_t slack) {
+  std::vector<std::uint32_t> new_first(o.nv + 1, 0);
+  for (std::size_t v = 0; v < o.nv; ++v) new_first[v + 1] = new_first[v] + o.count[v] + slack;
+  std::vector<Owner> moved(new_first[o.nv]);
+  if (!o.owners.empty())
+    for (std::size_t v = 0; v < o.nv; ++v)
+      std::copy_n(o.owners.begin() + o.first[v], o.count[v], moved.begin() + new_first[v]);
+  o.first.swap(new_first);
+  o.owners.swap(moved);
+}
+
+// The triangle holding directed edge a→b, or kNone.
+std::size_t owner_of(const OwnerTable& o, std::uint32_t a, std::uint32_t b) {
+  for (std::uint32_t k = o.first[a], e = o.first[a] + o.count[a]; k < e; ++k)
+    if (o.owners[k].to == b) return o.owners[k].tri;
+  return kNone;
+}
+
+// Records triangle t as holding directed edge a→b (growing the lists when a's is full).
+void set_owner(OwnerTable& o, std::uint32_t a, std::uint32_t b, std::size_t t) {
+  for (std::uint32_t k = o.first[a], e = o.first[a] + o.count[a]; k < e; ++k)
+    if (o.owners[k].to == b) {
+      o.owners[k].tri = t;
+      return;
     }
-    owners[first[a] + count[a]++] = {b, t};
-  };
-  auto erase_owner = [&](std::uint32_t a, std::uint32_t b) {
-    for (std::uint32_t k = first[a], e = first[a] + count[a]; k < e; ++k)
-      if (owners[k].to == b) {
-        std::copy(owners.begin() + k + 1, owners.begin() + e, owners.begin() + k);
-        --count[a];
-        return;
-      }
-  };
-  // Edges that skip the full test (below) need every directed edge in one triangle and triangles of
-  // three distinct vertices; otherwise every edge gets the full test.
-  bool plain = options.skip_acute;
+  if (o.first[a] + o.count[a] == o.first[a + 1]) {
+    o.slack *= 2;
+    lay_out(o, o.slack);
+  }
+  o.owners[o.first[a] + o.count[a]++] = {b, t};
+}
+
+// Forgets directed edge a→b.
+void erase_owner(OwnerTable& o, std::uint32_t a, std::uint32_t b) {
+  for (std::uint32_t k = o.first[a], e = o.first[a] + o.count[a]; k < e; ++k)
+    if (o.owners[k].to == b) {
+      std::copy(o.owners.begin() + k + 1, o.owners.begin() + e, o.owners.begin() + k);
+      --o.count[a];
+      return;
+    }
+}
+
+// The owner table of the triangles. `plain` (in: whether acute edges may skip the full test) is
+// cleared unless every directed edge lies in one triangle and every triangle has three distinct vertices.
+OwnerTable owner_table(const std::vector<Triangle>& tris, std::size_t nv, bool& plain) {
+  OwnerTable o;
+  o.nv = nv;
+  o.first.assign(nv + 1, 0);
+  o.count.assign(nv, 0);
+  for (const Triangle& t : tris)
+    for (std::uint32_t v : t) ++o.count[v];
+  lay_out(o, o.slack);
+  std::fill(o.count.begin(), o.count.end(), 0);
   for (std::size_t t = 0; t < tris.size(); ++t) {
     const Triangle& tri = tris[t];
     plain = plain && tri[0] != tri[1] && tri[1] != tri[2] && tri[2] != tri[0];
     for (int k = 0; k < 3; ++k) {
-      plain = plain && owner_of(tri[k], tri[(k + 1) % 3]) == none;
-      set_owner(tri[k], tri[(k + 1) % 3], t);
+      plain = plain && owner_of(o, tri[k], tri[(k + 1) % 3]) == kNone;
+      set_owner(o, tri[k], tri[(k + 1) % 3], t);
     }
   }
-  // Contour edges, per lower vertex (one array, vertex by vertex, in the listed order).
-  std::vector<std::uint32_t> fixed_first(nv + 1, 0), fixed_to(constrained.size());
-  for (const auto& e : constrained) ++fixed_first[std::min(e[0], e[1]) + 1];
-  for (std::size_t v = 0; v < nv; ++v) fixed_first[v + 1] += fixed_first[v];
-  {
-    std::vector<std::uint32_t> fill(fixed_first.begin(), fixed_first.end() - 1);
-    for (const auto& e : constrained) fixed_to[fill[std::min(e[0], e[1])]++] = std::max(e[0], e[1]);
+  return o;
+}
+
+// Contour edges, per lower vertex (one array, vertex by vertex, in the listed order).
+struct FixedEdges {
+  std::vector<std::uint32_t> first, to;
+};
+
+// The contour edges bucketed by their lower vertex.
+FixedEdges fixed_edges(const std::vector<std::array<std::uint32_t, 2>>& constrained, std::size_t nv) {
+  FixedEdges f{std::vector<std::uint32_t>(nv + 1, 0), std::vector<std::uint32_t>(constrained.size())};
+  for (const auto& e : constrained) ++f.first[std::min(e[0], e[1]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) f.first[v + 1] += f.first[v];
+  std::vector<std::uint32_t> fill(f.first.begin(), f.first.end() - 1);
+  for (const auto& e : constrained) f.to[fill[std::min(e[0], e[1])]++] = std::max(e[0], e[1]);
+  return f;
+}
+
+// Whether a-b (a < b) is a contour edge.
+bool is_fixed(const FixedEdges& f, std::uint32_t a, std::uint32_t b) {
+  const auto from = f.to.begin() + f.first[a], to = f.to.begin() + f.first[a + 1];
+  return std::find(from, to, b) != to;
+}
+
+// The vertex of triangle t other than a and b (a when there is none).
+std::uint32_t third(const Triangle& t, std::uint32_t a, std::uint32_t b) {
+  for (std::uint32_t v : t)
+    if (v != a && v != b) return v;
+  return a;
+}
+
+// A round's edges: undirected, sorted by their vertex ids (bucketed by the lower one, each bucket
+// of a few sorted by the other); bucket[v] ends vertex v's edges.
+struct RoundEdges {
+  std::vector<std::uint32_t> bucket;
+  std::vector<Edge> edges;
+};
+
+// The mesh's undirected edges in sorted order, for one round.
+RoundEdges sorted_edges(const std::vector<Triangle>& tris, std::size_t nv) {
+  RoundEdges r;
+  r.bucket.assign(nv + 1, 0);
+  for (const auto& tri : tris)
+    for (int k = 0; k < 3; ++k)
+      if (tri[k] < tri[(k + 1) % 3]) ++r.bucket[tri[k] + 1];
+  for (std::size_t v = 0; v < nv; ++v) r.bucket[v + 1] += r.bucket[v];
+  r.edges.resize(r.bucket[nv]);
+  for (const auto& tri : tris)
+    for (int k = 0; k < 3; ++k)
+      if (tri[k] < tri[(k + 1) % 3]) r.edges[r.bucket[tri[k]]++] = {tri[k], tri[(k + 1) % 3]};
+  for (std::size_t v = 0, from = 0; v < nv; ++v) {  // bucket[v] now ends vertex v's edges
+    std::sort(r.edges.begin() + static_cast<std::ptrdiff_t>(from), r.edges.begin() + static_cast<std::ptrdiff_t>(r.bucket[v]));
+    from = r.bucket[v];
   }
-  auto is_fixed = [&](std::uint32_t a, std::uint32_t b) {
-    const auto from = fixed_to.begin() + fixed_first[a], to = fixed_to.begin() + fixed_first[a + 1];
-    return std::find(from, to, b) != to;
-  };
+  return r;
+}
+
+// Marks edge u-w for the full test at its positions from `from_position` on.
+void mark(const RoundEdges& r, std::vector<char>& candidate, std::uint32_t u, std::uint32_t w, std::size_t from_position) {
+  const Edge key{std::min(u, w), std::max(u, w)};
+  const std::size_t first = key.first == 0 ? std::size_t{0} : static_cast<std::size_t>(r.bucket[key.first - 1]);
+  const auto from = r.edges.begin() + static_cast<std::ptrdiff_t>(first);
+  const auto to = r.edges.begin() + static_cast<std::ptrdiff_t>(r.bucket[key.first]);
+  const auto [lo, hi] = std::equal_range(from, to, key);
+  for (auto it = lo; it != hi; ++it) {
+    const auto at = static_cast<std::size_t>(it - r.edges.begin());
+    if (at >= from_position) candidate[at] = 1;
+  }
+}
+
+// Whether edge a-b between triangles (a, b, c) and (b, a, d) is flipped into (c, a, d), (c, d, b):
+// not Delaunay, the new edge c-d not there yet, the pair nearly coplanar (or one near-flat) and no fold.
+bool wants_flip(const OwnerTable& o, const std::vector<Vec3>& x, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                std::uint32_t d, const FlipOptions& options, double cos_dihedral) {
+  // Both opposite angles acute: their sum is at most π (each atan2 below returns at most π/2), so
+  // the edge is Delaunay; most are, and this spares their two atan2.
+  if (dot(x[a] - x[c], x[b] - x[c]) > 0 && dot(x[b] - x[d], x[a] - x[d]) > 0) return false;
+  if (c == d || owner_of(o, c, d) != kNone || owner_of(o, d, c) != kNone) return false;
+  if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= std::numbers::pi + 1e-9) return false;
+  if (options.only_below_deg > 0) {
+    const double before = std::min(min_angle_deg(x[a], x[b], x[c]), min_angle_deg(x[b], x[a], x[d]));
+    const double after = std::min(min_angle_deg(x[c], x[a], x[d]), min_angle_deg(x[c], x[d], x[b]));
+    if (before >= options.only_below_deg || after <= before) return false;
+  }
+  const Vec3 n1 = cross(x[b] - x[a], x[c] - x[a]), n2 = cross(x[a] - x[b], x[d] - x[b]);
+  const double l1 = norm(n1), l2 = norm(n2);
+  // Near-flat triangles (normal undefined: twice the area below 2 % of the squared edge, about a
+  // 1° angle) always qualify; others only where the pair is nearly coplanar.
+  const double ab2 = dot(x[b] - x[a], x[b] - x[a]);
+  const bool flat1 = l1 <= 0.02 * ab2, flat2 = l2 <= 0.02 * ab2;
+  if (!flat1 && !flat2 && dot(n1, n2) < cos_dihedral * l1 * l2) return false;
+  if (flat1 && flat2) return false;
+  const Vec3 n = flat1 ? n2 / l2 : flat2 ? n1 / l1 : n1 / l1 + n2 / l2;
+  // New triangles (c,a,d) and (c,d,b) must face the same way as the pair did (no fold).
+  const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
+  return !(dot(m1, n) <= 0 || dot(m2, n) <= 0);
+}
+
+// One round over every edge in sorted order, flipping where wanted; returns the number of flips.
+std::size_t flip_round(TriangleMesh& mesh, OwnerTable& o, const FixedEdges& fixed, bool plain, const FlipOptions& options,
+                       double cos_dihedral) {
+  auto& tris = mesh.triangles;
   const auto& x = mesh.positions;
+  std::size_t flipped_now = 0;
+  const RoundEdges r = sorted_edges(tris, mesh.positions.size());
+  // The test ends at once for an edge whose two opposite angles are acute, and everything it reads
+  // before that only decides between other ends at once. So an edge needs the test only where a
+  // triangle beside it at the round's start has a right or obtuse angle opposite it, or where a flip
+  // earlier in this round changed a triangle beside it: the others are skipped with the same
+  // outcome, and the flips are those of testing every edge.
+  std::vector<char> candidate(r.edges.size(), plain ? 0 : 1);
+  if (plain)
+    for (const Triangle& tri : tris)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t c = tri[k], p = tri[(k + 1) % 3], q = tri[(k + 2) % 3];
+        if (!(dot(x[p] - x[c], x[q] - x[c]) > 0)) mark(r, candidate, p, q, 0);
+      }
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    if (!candidate[i]) continue;
+    const auto [a, b] = r.edges[i];
+    if (is_fixed(fixed, a, b)) continue;
+    const std::size_t t1 = owner_of(o, a, b), t2 = owner_of(o, b, a);
+    if (t1 == kNone || t2 == kNone) continue;  // boundary or already flipped away
+    const std::uint32_t c = third(tris[t1], a, b), d = third(tris[t2], a, b);
+    if (!wants_flip(o, x, a, b, c, d, options, cos_dihedral)) continue;
+    erase_owner(o, a, b);
+    erase_owner(o, b, a);
+    tris[t1] = {c, a, d};
+    tris[t2] = {c, d, b};
+    for (std::size_t t : {t1, t2})
+      for (int k = 0; k < 3; ++k) set_owner(o, tris[t][k], tris[t][(k + 1) % 3], t);
+    // The edges whose triangles changed get the full test where they come later in this round.
+    if (plain)
+      for (const auto& [u, w] : {Edge{a, b}, Edge{b, c}, Edge{c, a}, Edge{a, d}, Edge{d, b}, Edge{c, d}}) mark(r, candidate, u, w, i + 1);
+    ++flipped_now;
+  }
+  return flipped_now;
+}
+
+}  // namespace
+
+std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
+                                const FlipOptions& options) {
+  const std::size_t nv = mesh.positions.size();
+  // Edges that skip the full test need every directed edge in one triangle and triangles of three
+  // distinct vertices; otherwise every edge gets the full test.
+  bool plain = options.skip_acute;
+  OwnerTable owners = owner_table(mesh.triangles, nv, plain);
+  const FixedEdges fixed = fixed_edges(constrained, nv);
   const double cos_dihedral = std::cos(options.max_dihedral_deg * std::numbers::pi / 180.0);
-  auto third = [&](std::size_t t, std::uint32_t a, std::uint32_t b) {
-    for (std::uint32_t v : tris[t])
-      if (v != a && v != b) return v;
-    return a;
-  };
   std::size_t flips = 0;
   for (int round = 0; round < options.max_rounds; ++round) {
-    std::size_t flipped_now = 0;
-    // Deterministic order: undirected edges sorted by their vertex ids (bucketed by the lower one, each
-    // bucket of a few sorted by the other).
-    std::vector<std::uint32_t> bucket(nv + 1, 0);
-    for (const auto& tri : tris)
-      for (int k = 0; k < 3; ++k)
-        if (tri[k] < tri[(k + 1) % 3]) ++bucket[tri[k] + 1];
-    for (std::size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
-    std::vector<Edge> edges(bucket[nv]);
-    for (const auto& tri : tris)
-      for (int k = 0; k < 3; ++k)
-        if (tri[k] < tri[(k + 1) % 3]) edges[bucket[tri[k]]++] = {tri[k], tri[(k + 1) % 3]};
-    for (std::size_t v = 0, from = 0; v < nv; ++v) {  // bucket[v] now ends vertex v's edges
-      std::sort(edges.begin() + static_cast<std::ptrdiff_t>(from), edges.begin() + static_cast<std::ptrdiff_t>(bucket[v]));
-      from = bucket[v];
-    }
-    // The test below ends at once ("continue") for an edge whose two opposite angles are acute, and
-    // everything it reads before that only decides between other ends at once. So an edge needs the
-    // test only where a triangle beside it at the round's start has a right or obtuse angle opposite
-    // it, or where a flip earlier in this round changed a triangle beside it: the others are skipped
-    // with the same outcome, and the flips are those of testing every edge.
-    auto first_of = [&](std::uint32_t v) { return v == 0 ? std::size_t{0} : static_cast<std::size_t>(bucket[v - 1]); };
-    std::vector<char> candidate(edges.size(), plain ? 0 : 1);
-    // Marks edge u-w for the full test at its positions from `from_position` on.
-    auto mark = [&](std::uint32_t u, std::uint32_t w, std::size_t from_position) {
-      const Edge key{std::min(u, w), std::max(u, w)};
-      const auto from = edges.begin() + static_cast<std::ptrdiff_t>(first_of(key.first));
-      const auto to = edges.begin() + static_cast<std::ptrdiff_t>(bucket[key.first]);
-      const auto [lo, hi] = std::equal_range(from, to, key);
-      for (auto it = lo; it != hi; ++it) {
-        const auto at = static_cast<std::size_t>(it - edges.begin());
-        if (at >= from_position) candidate[at] = 1;
-      }
-    };
-    if (plain)
-      for (const Triangle& tri : tris)
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t c = tri[k], p = tri[(k + 1) % 3], q = tri[(k + 2) % 3];
-          if (!(dot(x[p] - x[c], x[q] - x[c]) > 0)) mark(p, q, 0);
-        }
-    for (std::size_t i = 0; i < edges.size(); ++i) {
-      if (!candidate[i]) continue;
-      const auto [a, b] = edges[i];
-      if (is_fixed(a, b)) continue;
-      const std::size_t t1 = owner_of(a, b), t2 = owner_of(b, a);
-      if (t1 == none || t2 == none) continue;  // boundary or already flipped away
-      const std::uint32_t c = third(t1, a, b), d = third(t2, a, b);
-      // Both opposite angles acute: their sum is at most π (each atan2 below returns at most π/2), so
-      // the edge is Delaunay; most are, and this spares their two atan2.
-      if (dot(x[a] - x[c], x[b] - x[c]) > 0 && dot(x[b] - x[d], x[a] - x[d]) > 0) continue;
-      if (c == d || owner_of(c, d) != none || owner_of(d, c) != none) continue;
-      if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= std::numbers::pi + 1e-9) continue;
-      if (options.only_below_deg > 0) {
-        const double before = std::min(min_angle_deg(x[a], x[b], x[c]), min_angle_deg(x[b], x[a], x[d]));
-        const double after = std::min(min_angle_deg(x[c], x[a], x[d]), min_angle_deg(x[c], x[d], x[b]));
-        if (before >= options.only_below_deg || after <= before) continue;
-      }
-      const Vec3 n1 = cross(x[b] - x[a], x[c] - x[a]), n2 = cross(x[a] - x[b], x[d] - x[b]);
-      const double l1 = norm(n1), l2 = norm(n2);
-      // Near-flat triangles (normal undefined: twice the area below 2 % of the squared edge, about a
-      // 1° angle) always qualify; others only where the pair is nearly coplanar.
-      const double ab2 = dot(x[b] - x[a], x[b] - x[a]);
-      const bool flat1 = l1 <= 0.02 * ab2, flat2 = l2 <= 0.02 * ab2;
-      if (!flat1 && !flat2 && dot(n1, n2) < cos_dihedral * l1 * l2) continue;
-      if (flat1 && flat2) continue;
-      const Vec3 n = flat1 ? n2 / l2 : flat2 ? n1 / l1 : n1 / l1 + n2 / l2;
-      // New triangles (c,a,d) and (c,d,b) must face the same way as the pair did (no fold).
-      const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
-      if (dot(m1, n) <= 0 || dot(m2, n) <= 0) continue;
-      erase_owner(a, b);
-      erase_owner(b, a);
-      tris[t1] = {c, a, d};
-      tris[t2] = {c, d, b};
-      for (std::size_t t : {t1, t2})
-        for (int k = 0; k < 3; ++k) set_owner(tris[t][k], tris[t][(k + 1) % 3], t);
-      // The edges whose triangles changed get the full test where they come later in this round.
-      if (plain)
-        for (const auto& [u, w] : {Edge{a, b}, Edge{b, c}, Edge{c, a}, Edge{a, d}, Edge{d, b}, Edge{c, d}}) mark(u, w, i + 1);
-      ++flipped_now;
-    }
+    const std::size_t flipped_now = flip_round(mesh, owners, fixed, plain, options, cos_dihedral);
     flips += flipped_now;
     if (flipped_now == 0) break;
   }
@@ -265,4 +328,3 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
 }
 
 }  // namespace c4d
-

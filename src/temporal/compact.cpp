@@ -174,6 +174,225 @@ std::vector<Vec3> decode_motion(const CompactModel& m, std::size_t frame) {
   return d;
 }
 
+// The triangles' corner indices, flat.
+std::vector<std::uint32_t> flat_indices(const std::vector<Triangle>& triangles) {
+  std::vector<std::uint32_t> idx(triangles.size() * 3);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) idx[3 * t + c] = triangles[t][c];
+  return idx;
+}
+
+// Reorders for locality (the codecs compress deltas between neighbours): rewrites idx in the new
+// ids and returns order[new] = old (the identity without `reorder`).
+std::vector<std::uint32_t> reorder_vertices(std::vector<std::uint32_t>& idx, std::size_t nv, bool reorder) {
+  std::vector<std::uint32_t> order(nv);  // order[new] = old
+  std::iota(order.begin(), order.end(), 0u);
+  if (reorder) {
+    std::vector<std::uint32_t> tmp(idx.size());
+    meshopt_optimizeVertexCache(tmp.data(), idx.data(), idx.size(), nv);
+    std::vector<std::uint32_t> remap(nv);
+    const std::size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), tmp.data(), tmp.size(), nv);
+    std::uint32_t next = static_cast<std::uint32_t>(used);
+    for (std::size_t v = 0; v < nv; ++v)
+      if (remap[v] == ~0u) remap[v] = next++;  // unreferenced vertices go last
+    for (std::size_t v = 0; v < nv; ++v) order[remap[v]] = static_cast<std::uint32_t>(v);
+    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = remap[tmp[i]];
+  }
+  return order;
+}
+
+// Every frame's positions in the new vertex order.
+std::vector<std::vector<Vec3>> reordered_positions(const MeshSequence& seq, const std::vector<std::uint32_t>& order) {
+  const std::size_t nv = order.size();
+  std::vector<std::vector<Vec3>> P(seq.positions.size(), std::vector<Vec3>(nv));
+  for (std::size_t f = 0; f < seq.positions.size(); ++f)
+    for (std::size_t v = 0; v < nv; ++v) P[f][v] = seq.positions[f][order[v]];
+  return P;
+}
+
+// The model's counts, times (frame index x 1 ms when not given), tolerance and neighbours.
+CompactModel model_header(const MeshSequence& seq, const CompactOptions& opt) {
+  const std::size_t nf = seq.positions.size();
+  CompactModel m;
+  m.vertex_count = static_cast<std::uint32_t>(seq.positions[0].size());
+  m.triangle_count = static_cast<std::uint32_t>(seq.triangles.size());
+  m.frame_count = static_cast<std::uint32_t>(nf);
+  m.times_ms = seq.times_ms;
+  if (m.times_ms.empty())
+    for (std::size_t f = 0; f < nf; ++f) m.times_ms.push_back(static_cast<double>(f));
+  m.tolerance = opt.tolerance;
+  m.neighbours = static_cast<std::uint32_t>(std::clamp(opt.neighbours, 1, kMaxCompactNeighbours));
+  return m;
+}
+
+// Frame 0 on a grid: per-coordinate error <= step/2, Euclidean <= tolerance/2. Sets m.grid_step,
+// m.origin and m.positions.
+void encode_frame0(CompactModel& m, const std::vector<Vec3>& p0, double tolerance) {
+  const std::size_t nv = p0.size();
+  Vec3 lo = p0[0], hi = p0[0];
+  for (const Vec3& p : p0)
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], p[c]);
+      hi[c] = std::max(hi[c], p[c]);
+    }
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  m.grid_step = std::max(tolerance / std::sqrt(3.0), extent / 65535.0);
+  for (int c = 0; c < 3; ++c) m.origin[c] = lo[c];
+  std::vector<std::uint16_t> q0(nv * 4, 0);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int c = 0; c < 3; ++c)
+      q0[4 * v + c] = static_cast<std::uint16_t>(std::clamp(std::lround((p0[v][c] - lo[c]) / m.grid_step), 0L, 65535L));
+  m.positions.resize(meshopt_encodeVertexBufferBound(nv, 8));
+  m.positions.resize(meshopt_encodeVertexBuffer(m.positions.data(), m.positions.size(), q0.data(), nv, 8));
+}
+
+// Control vertices: those meshopt_simplify keeps of the (reordered) frame-0 mesh; every vertex for
+// a small mesh or a degenerate simplification.
+std::vector<std::uint32_t> control_vertices(const std::vector<Vec3>& p0, const std::vector<std::uint32_t>& idx,
+                                            const CompactOptions& opt) {
+  const std::size_t nv = p0.size();
+  std::vector<std::uint32_t> control;
+  if (nv <= opt.control_vertices + 3) {
+    control.resize(nv);
+    std::iota(control.begin(), control.end(), 0u);
+    return control;
+  }
+  std::vector<float> fp(nv * 3);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int c = 0; c < 3; ++c) fp[3 * v + c] = static_cast<float>(p0[v][c]);
+  std::vector<std::uint32_t> simple(idx.size());
+  const std::size_t target = std::max<std::size_t>(12, opt.control_vertices * 6);
+  simple.resize(meshopt_simplify(simple.data(), idx.data(), idx.size(), fp.data(), nv, 12, target, 1.0f, 0, nullptr));
+  std::vector<char> keep(nv, 0);
+  for (std::uint32_t i : simple) keep[i] = 1;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (keep[v]) control.push_back(static_cast<std::uint32_t>(v));
+  if (control.size() < 4) {  // degenerate simplification: fall back to every vertex
+    control.resize(nv);
+    std::iota(control.begin(), control.end(), 0u);
+  }
+  return control;
+}
+
+// Control displacements relative to the decoded frame 0 (`base`), int16 per coordinate. Sets
+// m.motion_step and m.motion.
+void encode_motion(CompactModel& m, const std::vector<std::vector<Vec3>>& P, const std::vector<Vec3>& base, double tolerance) {
+  const std::size_t nf = P.size(), nc = m.control.size();
+  double maxd = 0.0;
+  for (std::size_t f = 0; f < nf; ++f)
+    for (std::uint32_t c : m.control)
+      for (int i = 0; i < 3; ++i) maxd = std::max(maxd, std::abs(P[f][c][i] - base[c][i]));
+  m.motion_step = std::max(tolerance / 4.0, maxd / 32000.0);
+  std::vector<std::int16_t> qm(nc * nf * 4, 0);
+  for (std::size_t c = 0; c < nc; ++c)
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int i = 0; i < 3; ++i)
+        qm[(c * nf + f) * 4 + i] = static_cast<std::int16_t>(std::lround((P[f][m.control[c]][i] - base[m.control[c]][i]) / m.motion_step));
+  m.motion.resize(meshopt_encodeVertexBufferBound(nc * nf, 8));
+  m.motion.resize(meshopt_encodeVertexBuffer(m.motion.data(), m.motion.size(), qm.data(), nc * nf, 8));
+}
+
+// The triangles as the decoder will see them (the index codec may rotate corners), so that both
+// compute the same normals.
+std::vector<Triangle> decoded_triangles(const CompactModel& m, std::size_t index_count) {
+  std::vector<std::uint32_t> didx(index_count);
+  if (meshopt_decodeIndexBuffer(didx.data(), didx.size(), 4, m.indices.data(), m.indices.size()) != 0)
+    bad("index codec round trip failed", "report this as a bug");
+  std::vector<Triangle> tris(didx.size() / 3);
+  for (std::size_t t = 0; t < tris.size(); ++t) tris[t] = {didx[3 * t], didx[3 * t + 1], didx[3 * t + 2]};
+  return tris;
+}
+
+// What the corrections compare against: the decoder's triangles and their rings, the residual grid,
+// the accepted error and whether it is measured to the surface.
+struct Corrector {
+  const std::vector<Triangle>& tris;
+  const TriangleRings& rings;
+  double residual_step = 0.0;
+  double accept = 0.0;  // 0.9 x tolerance: margin for floating-point differences between machines
+  bool surface = false;
+};
+
+// One frame's correction stream (count, then per corrected vertex its id step and residuals):
+// moves pred where it misses `target` by more than the accepted error; adds the count to `corrected`.
+std::vector<std::uint8_t> frame_corrections(const Corrector& k, const std::vector<Vec3>& target,
+                                            const std::vector<Vec3>& normals, std::vector<Vec3>& pred,
+                                            std::size_t& corrected) {
+  std::vector<std::uint8_t> corr;
+  std::vector<std::uint8_t> body;
+  std::uint64_t count = 0;
+  std::size_t last = 0;
+  for (std::size_t v = 0; v < target.size(); ++v) {
+    if (k.surface) {
+      if (ring_distance(k.rings, k.tris, target, v, pred[v]) <= k.accept) continue;
+      // One scalar along the predicted normal when that brings the vertex onto the surface.
+      const std::int64_t r = std::llround(dot(target[v] - pred[v], normals[v]) / k.residual_step);
+      const Vec3 cand = pred[v] + (static_cast<double>(r) * k.residual_step) * normals[v];
+      if (r != 0 && ring_distance(k.rings, k.tris, target, v, cand) <= k.accept) {
+        put_varint(body, 2 * (v - last));
+        put_varint(body, zigzag(r));
+        pred[v] = cand;
+        last = v;
+        ++count;
+        continue;
+      }
+    } else if (distance(pred[v], target[v]) <= k.accept) {
+      continue;
+    }
+    std::array<std::int64_t, 3> r{};
+    for (int i = 0; i < 3; ++i) r[i] = std::llround((target[v][i] - pred[v][i]) / k.residual_step);
+    put_varint(body, k.surface ? 2 * (v - last) + 1 : v - last);
+    last = v;
+    for (int i = 0; i < 3; ++i) {
+      put_varint(body, zigzag(r[i]));
+      pred[v][i] += static_cast<double>(r[i]) * k.residual_step;
+    }
+    ++count;
+  }
+  put_varint(corr, count);
+  corr.insert(corr.end(), body.begin(), body.end());
+  corrected += count;
+  return corr;
+}
+
+// Adds one frame's errors (decoded `pred` against `target`) to st; sum2 gathers the squared distances.
+void add_frame_errors(const Corrector& k, const std::vector<Vec3>& target, const std::vector<Vec3>& pred,
+                      CompactStats& st, double& sum2) {
+  for (std::size_t v = 0; v < target.size(); ++v) {
+    const double e = distance(pred[v], target[v]);
+    st.max_error = std::max(st.max_error, e);
+    sum2 += e * e;
+    st.max_surface_error = std::max(st.max_surface_error, ring_distance(k.rings, k.tris, target, v, pred[v]));
+    st.max_surface_error_back = std::max(st.max_surface_error_back, ring_distance(k.rings, k.tris, pred, v, target[v]));
+  }
+}
+
+// Corrections where the interpolated motion misses the input by more than the tolerance (with a
+// margin for floating-point differences between machines): sets m.residual_step, m.error and
+// m.corrections; returns the error statistics.
+CompactStats encode_corrections(CompactModel& m, const std::vector<std::vector<Vec3>>& P, const std::vector<Vec3>& base,
+                                std::size_t index_count, const CompactOptions& opt) {
+  const std::size_t nv = base.size(), nf = P.size();
+  m.residual_step = 2.0 * opt.tolerance / std::sqrt(3.0) * 0.98;
+  const ControlWeights w = control_weights(base, m.control, static_cast<int>(m.neighbours));
+  CompactStats st;
+  double sum2 = 0.0;
+  m.error = opt.error;
+  const std::vector<Triangle> tris = decoded_triangles(m, index_count);
+  const TriangleRings rings = triangle_rings(nv, tris);
+  const Corrector k{tris, rings, m.residual_step, 0.9 * opt.tolerance, opt.error == CompactError::Surface};
+  std::vector<Vec3> pred, normals;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::vector<Vec3> disp = decode_motion(m, f);
+    predict(base, w, disp, pred);
+    if (k.surface) normals = area_weighted_normals(pred, tris, Vec3{});
+    m.corrections.push_back(frame_corrections(k, P[f], normals, pred, st.corrected_vertices));
+    add_frame_errors(k, P[f], pred, st, sum2);
+  }
+  st.rms_error = std::sqrt(sum2 / static_cast<double>(nv * nf));
+  return st;
+}
+
 }  // namespace
 
 ControlWeights control_weights(const std::vector<Vec3>& positions, const std::vector<std::uint32_t>& control,
@@ -241,165 +460,22 @@ CompactModel compact_encode(const MeshSequence& seq_in, const CompactOptions& op
   validate(seq_in);
   if (!(opt.tolerance > 0.0)) bad("tolerance must be positive", "use e.g. 0.05 mm");
   const std::size_t nv = seq_in.positions[0].size();
-  const std::size_t nf = seq_in.positions.size();
-  std::vector<std::uint32_t> idx(seq_in.triangles.size() * 3);
-  for (std::size_t t = 0; t < seq_in.triangles.size(); ++t)
-    for (int c = 0; c < 3; ++c) idx[3 * t + c] = seq_in.triangles[t][c];
+  std::vector<std::uint32_t> idx = flat_indices(seq_in.triangles);
+  const std::vector<std::uint32_t> order = reorder_vertices(idx, nv, opt.reorder);  // rewrites idx
+  const std::vector<std::vector<Vec3>> P = reordered_positions(seq_in, order);
 
-  // Reorder for locality: the codecs compress deltas between neighbours.
-  std::vector<std::uint32_t> order(nv);  // order[new] = old
-  std::iota(order.begin(), order.end(), 0u);
-  if (opt.reorder) {
-    std::vector<std::uint32_t> tmp(idx.size());
-    meshopt_optimizeVertexCache(tmp.data(), idx.data(), idx.size(), nv);
-    std::vector<std::uint32_t> remap(nv);
-    const std::size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), tmp.data(), tmp.size(), nv);
-    std::uint32_t next = static_cast<std::uint32_t>(used);
-    for (std::size_t v = 0; v < nv; ++v)
-      if (remap[v] == ~0u) remap[v] = next++;  // unreferenced vertices go last
-    for (std::size_t v = 0; v < nv; ++v) order[remap[v]] = static_cast<std::uint32_t>(v);
-    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = remap[tmp[i]];
-  }
-  std::vector<std::vector<Vec3>> P(nf, std::vector<Vec3>(nv));
-  for (std::size_t f = 0; f < nf; ++f)
-    for (std::size_t v = 0; v < nv; ++v) P[f][v] = seq_in.positions[f][order[v]];
-
-  CompactModel m;
-  m.vertex_count = static_cast<std::uint32_t>(nv);
-  m.triangle_count = static_cast<std::uint32_t>(seq_in.triangles.size());
-  m.frame_count = static_cast<std::uint32_t>(nf);
-  m.times_ms = seq_in.times_ms;
-  if (m.times_ms.empty())
-    for (std::size_t f = 0; f < nf; ++f) m.times_ms.push_back(static_cast<double>(f));
-  m.tolerance = opt.tolerance;
-  m.neighbours = static_cast<std::uint32_t>(std::clamp(opt.neighbours, 1, kMaxCompactNeighbours));
-
+  CompactModel m = model_header(seq_in, opt);
   m.indices.resize(meshopt_encodeIndexBufferBound(idx.size(), nv));
   m.indices.resize(meshopt_encodeIndexBuffer(m.indices.data(), m.indices.size(), idx.data(), idx.size()));
-
-  // Frame 0 on a grid: per-coordinate error <= step/2, Euclidean <= tolerance/2.
-  Vec3 lo = P[0][0], hi = P[0][0];
-  for (const Vec3& p : P[0])
-    for (int c = 0; c < 3; ++c) {
-      lo[c] = std::min(lo[c], p[c]);
-      hi[c] = std::max(hi[c], p[c]);
-    }
-  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  m.grid_step = std::max(opt.tolerance / std::sqrt(3.0), extent / 65535.0);
-  for (int c = 0; c < 3; ++c) m.origin[c] = lo[c];
-  std::vector<std::uint16_t> q0(nv * 4, 0);
-  for (std::size_t v = 0; v < nv; ++v)
-    for (int c = 0; c < 3; ++c)
-      q0[4 * v + c] = static_cast<std::uint16_t>(std::clamp(std::lround((P[0][v][c] - lo[c]) / m.grid_step), 0L, 65535L));
-  m.positions.resize(meshopt_encodeVertexBufferBound(nv, 8));
-  m.positions.resize(meshopt_encodeVertexBuffer(m.positions.data(), m.positions.size(), q0.data(), nv, 8));
+  encode_frame0(m, P[0], opt.tolerance);
   const std::vector<Vec3> base = decode_positions(m);
+  m.control = control_vertices(P[0], idx, opt);
+  encode_motion(m, P, base, opt.tolerance);
+  CompactStats st = encode_corrections(m, P, base, idx.size(), opt);
 
-  // Control vertices: those meshopt_simplify keeps of the (reordered) frame-0 mesh.
-  if (nv <= opt.control_vertices + 3) {
-    m.control.resize(nv);
-    std::iota(m.control.begin(), m.control.end(), 0u);
-  } else {
-    std::vector<float> fp(nv * 3);
-    for (std::size_t v = 0; v < nv; ++v)
-      for (int c = 0; c < 3; ++c) fp[3 * v + c] = static_cast<float>(P[0][v][c]);
-    std::vector<std::uint32_t> simple(idx.size());
-    const std::size_t target = std::max<std::size_t>(12, opt.control_vertices * 6);
-    simple.resize(meshopt_simplify(simple.data(), idx.data(), idx.size(), fp.data(), nv, 12, target, 1.0f, 0, nullptr));
-    std::vector<char> keep(nv, 0);
-    for (std::uint32_t i : simple) keep[i] = 1;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (keep[v]) m.control.push_back(static_cast<std::uint32_t>(v));
-    if (m.control.size() < 4) {  // degenerate simplification: fall back to every vertex
-      m.control.resize(nv);
-      std::iota(m.control.begin(), m.control.end(), 0u);
-    }
-  }
-  const std::size_t nc = m.control.size();
-
-  // Control displacements relative to the decoded frame 0, int16 per coordinate.
-  double maxd = 0.0;
-  for (std::size_t f = 0; f < nf; ++f)
-    for (std::uint32_t c : m.control)
-      for (int i = 0; i < 3; ++i) maxd = std::max(maxd, std::abs(P[f][c][i] - base[c][i]));
-  m.motion_step = std::max(opt.tolerance / 4.0, maxd / 32000.0);
-  std::vector<std::int16_t> qm(nc * nf * 4, 0);
-  for (std::size_t c = 0; c < nc; ++c)
-    for (std::size_t f = 0; f < nf; ++f)
-      for (int i = 0; i < 3; ++i)
-        qm[(c * nf + f) * 4 + i] = static_cast<std::int16_t>(std::lround((P[f][m.control[c]][i] - base[m.control[c]][i]) / m.motion_step));
-  m.motion.resize(meshopt_encodeVertexBufferBound(nc * nf, 8));
-  m.motion.resize(meshopt_encodeVertexBuffer(m.motion.data(), m.motion.size(), qm.data(), nc * nf, 8));
-
-  // Corrections where the interpolated motion misses the input by more than the tolerance (with a
-  // margin for floating-point differences between machines).
-  m.residual_step = 2.0 * opt.tolerance / std::sqrt(3.0) * 0.98;
-  const ControlWeights w = control_weights(base, m.control, static_cast<int>(m.neighbours));
-  CompactStats st;
-  double sum2 = 0.0;
-  m.error = opt.error;
-  const bool surface = opt.error == CompactError::Surface;
-  // The triangles as the decoder will see them (the index codec may rotate corners), so that both
-  // compute the same normals.
-  std::vector<std::uint32_t> didx(idx.size());
-  if (meshopt_decodeIndexBuffer(didx.data(), didx.size(), 4, m.indices.data(), m.indices.size()) != 0)
-    bad("index codec round trip failed", "report this as a bug");
-  std::vector<Triangle> tris(didx.size() / 3);
-  for (std::size_t t = 0; t < tris.size(); ++t) tris[t] = {didx[3 * t], didx[3 * t + 1], didx[3 * t + 2]};
-  const TriangleRings rings = triangle_rings(nv, tris);
-  std::vector<Vec3> pred, normals;
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::vector<Vec3> disp = decode_motion(m, f);
-    predict(base, w, disp, pred);
-    if (surface) normals = area_weighted_normals(pred, tris, Vec3{});
-    std::vector<std::uint8_t> corr;
-    std::vector<std::uint8_t> body;
-    std::uint64_t count = 0;
-    std::size_t last = 0;
-    const double accept = 0.9 * opt.tolerance;  // margin for floating-point differences between machines
-    for (std::size_t v = 0; v < nv; ++v) {
-      if (surface) {
-        if (ring_distance(rings, tris, P[f], v, pred[v]) <= accept) continue;
-        // One scalar along the predicted normal when that brings the vertex onto the surface.
-        const std::int64_t r = std::llround(dot(P[f][v] - pred[v], normals[v]) / m.residual_step);
-        const Vec3 cand = pred[v] + (static_cast<double>(r) * m.residual_step) * normals[v];
-        if (r != 0 && ring_distance(rings, tris, P[f], v, cand) <= accept) {
-          put_varint(body, 2 * (v - last));
-          put_varint(body, zigzag(r));
-          pred[v] = cand;
-          last = v;
-          ++count;
-          continue;
-        }
-      } else if (distance(pred[v], P[f][v]) <= accept) {
-        continue;
-      }
-      std::array<std::int64_t, 3> r{};
-      for (int i = 0; i < 3; ++i) r[i] = std::llround((P[f][v][i] - pred[v][i]) / m.residual_step);
-      put_varint(body, surface ? 2 * (v - last) + 1 : v - last);
-      last = v;
-      for (int i = 0; i < 3; ++i) {
-        put_varint(body, zigzag(r[i]));
-        pred[v][i] += static_cast<double>(r[i]) * m.residual_step;
-      }
-      ++count;
-    }
-    put_varint(corr, count);
-    corr.insert(corr.end(), body.begin(), body.end());
-    m.corrections.push_back(std::move(corr));
-    st.corrected_vertices += count;
-    for (std::size_t v = 0; v < nv; ++v) {
-      const double e = distance(pred[v], P[f][v]);
-      st.max_error = std::max(st.max_error, e);
-      sum2 += e * e;
-      st.max_surface_error = std::max(st.max_surface_error, ring_distance(rings, tris, P[f], v, pred[v]));
-      st.max_surface_error_back = std::max(st.max_surface_error_back, ring_distance(rings, tris, pred, v, P[f][v]));
-    }
-  }
-  st.rms_error = std::sqrt(sum2 / static_cast<double>(nv * nf));
   st.index_bytes = m.indices.size();
   st.position_bytes = m.positions.size();
-  st.motion_bytes = m.motion.size() + 4 * nc;
+  st.motion_bytes = m.motion.size() + 4 * m.control.size();
   for (const auto& c : m.corrections) st.correction_bytes += c.size();
   if (stats) *stats = st;
   if (vertex_order) *vertex_order = order;
