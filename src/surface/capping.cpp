@@ -7,7 +7,7 @@
 // Our addition (not in the paper): after fairing, ends hold the volume their sections imply — caps
 // on ends that keep their size are filled towards the linear trend of the last two section areas
 // (as Simpson's discs assume a full half-spacing prism there), and the wall into a closing end
-// follows a cubic Hermite section-area curve (docs/algorithms/one_frame_surface.md).
+// follows a cubic Hermite section-area curve (docs/algorithms/caps.md).
 #include "contour4d/surface/capping.h"
 
 #include "contour4d/core/errors.h"

@@ -764,7 +764,7 @@ void tile_walls(FrameWork& fw) {
       if (tiled) continue;
       // Bridge height above the slice of the several contours: the saddle where they join lies near
       // the single contour's slice (kBridgeRise of the gap puts the faired saddle closer to analytic
-      // saddles than half the gap does; one_frame_surface.md).
+      // saddles than half the gap does; docs/algorithms/one_frame_surface.md).
       const double rise = (both ? kBridgeRiseBoth : kBridgeRise) * gap;
       const auto lc = lower.size() == 1 ? nodes[lower[0]].chain
                                         : merge_with_bridges(lower, nodes, slices[s].plane, rise, opt.edge, b);
@@ -921,7 +921,7 @@ void add_caps(FrameWork& fw) {
         // lower (the umbrella Laplacian weighs a coarse region's curvature more).
         // The others get a uniform interior. Rings with walls: CGAL's bound 2 edges (mean edge about 1.4 edges; the
         // final remeshing brings it back to `edge`) and scale-aware fairing terms (below): about a quarter of
-        // the points of bound 1, the frame faster (one_frame_surface.md). Lone contours and holes, and rings without walls (their domes keep
+        // the points of bound 1, the frame faster (docs/algorithms/caps.md). Lone contours and holes, and rings without walls (their domes keep
         // their shape): bound √2 (mean edge about `edge`; bound 1 gave 0.7 edge) and their rows scaled by
         // 1/√2 (below).
         const bool ring = group.size() > 1 && !lone;

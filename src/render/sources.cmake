@@ -1,1 +1,0 @@
-# Sources of the render stage (paths relative to src/).

@@ -1,1 +1,0 @@
-c4d_add_test(vertical_deformation_test unit/vertical_deformation_test.cpp)
