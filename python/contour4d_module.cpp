@@ -239,9 +239,7 @@ ReconstructRunOptions run_options(py::kwargs& kw) {
   take("cap_fill", o.cap_fill);
   take("method", o.method);
   take("threads", o.threads);
-  take("pin_spacing", o.pin_spacing);
   take("vertical_deformation", o.vertical);
-  take("biharmonic", o.biharmonic);
   take("fast", o.fast);
   take("no_rows", o.no_rows);
   take("tiling", o.tiling);
@@ -388,7 +386,7 @@ PYBIND11_MODULE(contour4d, m) {
         "Reconstructs INPUT (a path, a list of contour dicts, or read()'s dict) as `contour4d reconstruct` does.\n"
         "Returns {'positions': (frames, vertices, 3), 'triangles': (n, 3), 'times_ms': (frames,), 'report': dict}.\n"
         "With output= the same files as the command line are written there. Options: frame, edge, cap, cap_fill,\n"
-        "method, threads, volume_tolerance, pin_spacing, vertical_deformation, biharmonic, fast, no_rows, tiling,\n"
+        "method, threads, volume_tolerance, vertical_deformation, fast, no_rows, tiling,\n"
         "remesher, and read()'s. A result that fails its checks raises SolverError (exit_code 26).");
   m.def("evaluate", &evaluate_folder, "outdir"_a, "contours"_a = py::none(), "truth"_a = py::none(), "label"_a = "",
         "type"_a = std::vector<std::string>{}, "step"_a = 0.2, "sample_spacing"_a = 0.5, "self_intersections"_a = true,

@@ -195,14 +195,6 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(advanced);
-  app->add_option("--pin-spacing", args->run.pin_spacing,
-                  "> 0: also hold frame-0 contour vertices on later contours, at least this x the median edge apart")
-      ->capture_default_str()
-      ->group(advanced);
-  app->add_flag("--biharmonic", args->run.biharmonic,
-                "frames whose contours all match the previous frame's one-to-one follow them by one biharmonic "
-                "solve, unless that fails the quality guard")
-      ->group(advanced);
   app->add_option("--remesher", args->run.remesher,
                   "isotropic remeshing: auto (default), cgal (CGAL's) or fast (ours, on flat arrays)")
       ->check(CLI::IsMember({"auto", "cgal", "fast"}))

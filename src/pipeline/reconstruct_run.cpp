@@ -70,9 +70,7 @@ Reconstruct4DOptions library_options(const ReconstructRunOptions& a, const std::
   opt.surface.cap_max_fill = a.cap_fill;
   opt.all_frames = a.method == "carry" ? AllFramesMethod::Carry : AllFramesMethod::Morph;
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
-  opt.morph.pin_spacing = a.pin_spacing;
   opt.morph.vertical_deformation = a.vertical;
-  opt.morph.biharmonic = a.biharmonic;
   return opt;
 }
 
@@ -89,9 +87,8 @@ Json start_report(const InputResult& read, const std::string& input, const Recon
       {"repairs", repairs_json(read.repairs)},
       {"options",
        {{"edge_mm", a.edge}, {"cap", a.cap}, {"cap_fill", a.cap_fill}, {"method", a.method}, {"threshold", opt.surface.threshold},
-        {"fast", a.fast}, {"no_rows", a.no_rows}, {"tiling", a.tiling}, {"remesher", a.remesher}, {"pin_spacing", a.pin_spacing},
-        {"vertical_deformation", a.vertical},
-        {"biharmonic", a.biharmonic}}},
+        {"fast", a.fast}, {"no_rows", a.no_rows}, {"tiling", a.tiling}, {"remesher", a.remesher},
+        {"vertical_deformation", a.vertical}}},
   };
 }
 
@@ -186,7 +183,6 @@ Json frames_json(const MeshSequence& result, const Reconstruct4DReport& rr) {
                       {"sliding_contour_vertices", mf.sliding},
                       {"plane_snapped_vertices", mf.plane_snapped},
                       {"redone", mf.redone},
-                      {"biharmonic", mf.biharmonic},
                       {"contour_fit",
                        {{"moved_vertices", mf.fit_moved},
                         {"max_distance_before_mm", mf.fit_max_before},
@@ -194,7 +190,7 @@ Json frames_json(const MeshSequence& result, const Reconstruct4DReport& rr) {
                       {"intersecting_pairs_after_untangling", mf.intersecting_pairs},
                       {"projection_mean_mm", mf.projection_mean},
                       {"projection_max_mm", mf.projection_max},
-                      {"surface", mf.biharmonic ? Json() : surface_json(rr.surfaces[f])}});
+                      {"surface", surface_json(rr.surfaces[f])}});
   }
   return frames;
 }

@@ -27,9 +27,7 @@ struct ReconstructRunOptions {
   double cap_fill = SurfaceOptions{}.cap_max_fill;  //!< [--cap-fill] see SurfaceOptions::cap_max_fill
   std::string method = "rbf-project";  //!< [--method] all frames: "rbf-project", "carry" or "rbf" (the paper's)
   int threads = 0;                     //!< [--threads] worker threads, 0: all cores; the output does not depend on it
-  double pin_spacing = MorphOptions{}.pin_spacing;  //!< [--pin-spacing] see MorphOptions::pin_spacing
   bool vertical = false;               //!< [--vertical-deformation] Lim et al.'s vertical deformation
-  bool biharmonic = false;             //!< [--biharmonic] see MorphOptions::biharmonic
   bool fast = false;                   //!< [--fast] frame 0 by interpolated rows (Reconstruct4DOptions::frame0_rows)
   bool no_rows = false;                //!< [--no-rows] remesh every band instead of interpolated rows
   std::string tiling = "bands";        //!< [--tiling] "bands" or "delaunay" (Lim et al.'s)
