@@ -30,14 +30,13 @@ double peak_rss_mb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
-void run(benchmark::State& state, c4d::MorphMethod method, bool biharmonic = false,
+void run(benchmark::State& state, c4d::MorphMethod method,
          c4d::AllFramesMethod all_frames = c4d::AllFramesMethod::Morph) {
   const int threads = static_cast<int>(state.range(0));
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   const c4d::Sequence& seq = left_heart_cycle().contours;
   c4d::Reconstruct4DOptions opt;
   opt.morph.method = method;
-  opt.morph.biharmonic = biharmonic;
   opt.all_frames = all_frames;
   std::size_t vertices = 0;
   for (auto _ : state) {
@@ -60,15 +59,12 @@ void run(benchmark::State& state, c4d::MorphMethod method, bool biharmonic = fal
 
 void BM_LeftHeartCycle_RbfProject(benchmark::State& s) { run(s, c4d::MorphMethod::RbfProject); }
 void BM_LeftHeartCycle_PaperRbf(benchmark::State& s) { run(s, c4d::MorphMethod::Rbf); }
-// MorphOptions::biharmonic (--biharmonic): frames that keep the previous frame's contour topology by one solve.
-void BM_LeftHeartCycle_Biharmonic(benchmark::State& s) { run(s, c4d::MorphMethod::RbfProject, true); }
 // --method carry: every frame on its own from frame 0's mesh (carry.h), frames in parallel.
 void BM_LeftHeartCycle_Carry(benchmark::State& s) {
-  run(s, c4d::MorphMethod::RbfProject, false, c4d::AllFramesMethod::Carry);
+  run(s, c4d::MorphMethod::RbfProject, c4d::AllFramesMethod::Carry);
 }
 
 BENCHMARK(BM_LeftHeartCycle_RbfProject)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-BENCHMARK(BM_LeftHeartCycle_Biharmonic)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_LeftHeartCycle_Carry)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_LeftHeartCycle_PaperRbf)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 

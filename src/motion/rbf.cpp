@@ -12,7 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/errors.h"
-#include "contour4d/core/packed_math.h"
+#include "packed_math_internal.h"
 #include "rbf_lanes_internal.h"
 #include "simd_avx_internal.h"
 
@@ -79,13 +79,13 @@ RbfDeformer::RbfDeformer(const std::vector<Vec3>& src, const std::vector<Vec3>& 
 
 Vec3 RbfDeformer::apply(Vec3 p) const {
   Vec3 out = p;
-  // Two centres' square roots per instruction (packed_math.h: the same bits); the sum keeps their order.
+  // Two centres' square roots per instruction (packed_math_internal.h: the same bits); the sum keeps their order.
   const std::size_t n = centers_.size();
   std::size_t k = 0;
   for (; k + 1 < n; k += 2) {
     const Vec3 d0 = p - centers_[k], d1 = p - centers_[k + 1];
     double r[2];
-    sqrt2(dot(d0, d0) + c2_[k], dot(d1, d1) + c2_[k + 1], r);
+    detail::sqrt2(dot(d0, d0) + c2_[k], dot(d1, d1) + c2_[k + 1], r);
     out += r[0] * weights_[k];
     out += r[1] * weights_[k + 1];
   }

@@ -75,19 +75,11 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   Reconstruct4DReport local;
   Reconstruct4DReport& rep = report ? *report : local;
   rep.surfaces.assign(n, {});
-  // Frame 0 always; every frame when the morph projects onto each frame's own surface. With
-  // MorphOptions::biharmonic, only the frames whose contour counts differ from the frame before are built
-  // ahead (in parallel); the others when the morph first needs them (a frame that falls back).
+  // Frame 0 always; every frame when the morph projects onto each frame's own surface.
   const bool project = options.morph.method == MorphMethod::RbfProject;
-  auto counts = [&](std::size_t f) {
-    std::map<int, std::size_t> c;
-    for (const Slice& s : seq.frames[f].slices) c[s.id] = s.contours.size();
-    return c;
-  };
   std::vector<char> ahead(n, 0);
   ahead[0] = 1;
-  for (std::size_t f = 1; f < n; ++f)
-    ahead[f] = project && (!options.morph.biharmonic || counts(f) != counts(f - 1));
+  for (std::size_t f = 1; f < n; ++f) ahead[f] = project;
   auto build = [&](std::size_t f) {
     SurfaceOptions so = options.surface;
     if (f == 0) {  // the carried mesh: remeshed bands, evenly spread, at the angle the morph keeps later

@@ -1,6 +1,6 @@
 #pragma once
-// What one relaxation sweep step reads (morph.cpp, "Tangential relaxation"; positions k in the
-// breadth-first order), for the several-vertex steps of sweep_lanes_internal.h.
+// What one relaxation sweep step reads (morph_relax.cpp; positions k in the breadth-first order), for the
+// one-vertex step there and the several-vertex steps of sweep_lanes_internal.h.
 
 #include <cstddef>
 #include <cstdint>
@@ -17,10 +17,10 @@ struct SweepArrays {
   const std::size_t* opp_start = nullptr;  // each vertex's opposite edges: pairs in opp_index
   const std::uint32_t* opp_index = nullptr;
   const char* zone = nullptr;              // saddle-zone weights on (curv_dev > 0 there)
-  double curv_dev = 0;
-  double shape_weight = 0.5;
-  double beta = 0.9;
-  double step = 0.5;
+  double curv_dev = 0;                     // saddle weights' deviation (mm)
+  double shape_weight = 0;                 // share of the equilateral pull against the umbrella
+  double beta = 0;                         // momentum
+  double step = 0;                         // fraction of the move per sweep
 };
 
 }  // namespace c4d::detail

@@ -1,12 +1,11 @@
 #pragma once
-// One relaxation sweep step (morph.cpp, "Tangential relaxation", which keeps the mesh good through the
-// cycle: Lim et al. 2014, "4D Morphing of the Heart Model") for several vertices at once, one per SIMD
+// One relaxation sweep step (morph_relax.cpp, sweep_one, which keeps the mesh good through the cycle:
+// Lim et al. 2014, "4D Morphing of the Heart Model") for several vertices at once, one per SIMD
 // lane (simd_lanes_internal.h: two with SSE2, four with AVX), each lane repeating the one-vertex step's
 // operations in order, so that its result is the one-vertex result bit for bit. The one-vertex step
 // waits on latency (its neighbours' loads, then a division and a square root per opposite edge, chained
 // into its sums); independent vertices in one instruction stream give the core several chains to
-// overlap. Only the default blend is handled here (springs off, equilateral pull on); morph.cpp keeps the
-// one-vertex step for the rest and for vertices left without partners.
+// overlap. morph_relax.cpp keeps the one-vertex step for vertices left without partners.
 
 #include <cstddef>
 #include <cstdint>
@@ -20,7 +19,7 @@ namespace {
 
 #if defined(__SSE2__)
 // The sweep step of the L::n vertices idx[0..n) (free, with non-empty rings): their new velocities (from
-// vel) and positions, as morph.cpp's one-vertex step computes them before sliding.
+// vel) and positions, as morph_relax.cpp's one-vertex step computes them before sliding.
 template <class L>
 void sweep_lanes(const SweepArrays& s, const std::size_t* idx, Vec3* vel, Vec3* moved) {
   using V = typename L::V;
@@ -50,7 +49,6 @@ void sweep_lanes(const SweepArrays& s, const std::size_t* idx, Vec3* vel, Vec3* 
   const V weighted_mask = L::mask(weighted);
   const V eight_dev = L::set1(8.0 * s.curv_dev);
   P c = P::zero(), g = P::zero(), mid = P::zero();
-  const P sp = P::zero();
   V wsum = zero;
   bool in[n];
   // Umbrella: each lane's ring in its order; a lane past its ring's end keeps its sums (it loads its own
@@ -100,8 +98,8 @@ void sweep_lanes(const SweepArrays& s, const std::size_t* idx, Vec3* vel, Vec3* 
   const V m = L::from(counts);
   const V inv = L::div(one, m);
   c = pick<L>(weighted_mask, L::div(m, wsum) * c, c);
-  // (spring_weight · sp + (1 − spring_weight) · c) · inv with spring_weight = 0, as the one-vertex step.
-  P d = inv * (zero * sp + one * c);
+  // (+0 + c) · inv, as the one-vertex step (a −0 becomes +0).
+  P d = inv * (P::zero() + c);
   const V no = L::max(one, L::from(opp_counts));
   const P pull = (L::set1(0.5) * mid + L::set1(0.8660254037844386) * cross(nrm, g)) / no;
   d = L::set1(1.0 - s.shape_weight) * d + L::set1(s.shape_weight) * pull;

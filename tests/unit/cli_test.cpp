@@ -129,7 +129,7 @@ TEST(Cli, SummaryFirstFormatsAndWarnings) {
   const std::size_t edge = help.out.find("--edge"), advanced = help.out.find("Advanced:");
   ASSERT_NE(advanced, std::string::npos) << help.out;
   EXPECT_LT(edge, advanced) << help.out;
-  EXPECT_GT(help.out.find("--pin-spacing"), advanced) << help.out;
+  EXPECT_GT(help.out.find("--tiling"), advanced) << help.out;
   std::filesystem::remove_all(dir);
 }
 

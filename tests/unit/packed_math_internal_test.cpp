@@ -1,4 +1,4 @@
-// packed_math.h against the scalar std::sqrt and division: the same bits, special values included.
+// packed_math_internal.h against the scalar std::sqrt and division: the same bits, special values included.
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "contour4d/core/packed_math.h"
+#include "motion/packed_math_internal.h"
 
-namespace c4d {
+namespace c4d::detail {
 namespace {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -46,4 +46,4 @@ TEST(PackedMath, SqrtOfRatios2EqualsScalarBitForBit) {
 }
 
 }  // namespace
-}  // namespace c4d
+}  // namespace c4d::detail
