@@ -56,9 +56,12 @@ const LabelSeries& cine() {
           for (int i = 0; i < 256; ++i) {
             const Vec3 p{i * kSpacing[0], j * kSpacing[1], k * kSpacing[2]};
             int32_t l = 0;
-            if (lv.radial(p) < 0) l = 3;
-            else if (myo.radial(p) < 0) l = 2;
-            else if (rv.radial(p) < 0) l = 1;
+            if (lv.radial(p) < 0)
+              l = 3;
+            else if (myo.radial(p) < 0)
+              l = 2;
+            else if (rv.radial(p) < 0)
+              l = 1;
             v.labels[static_cast<std::size_t>(i + 256 * (j + 256 * k))] = l;
           }
       s.frames.push_back(std::move(v));
@@ -143,8 +146,8 @@ int main(int argc, char** argv) {
       js << "{\"label\": 3, \"frames\": [";
       for (int t = 0; t < kFrames; ++t) {
         const Ellipsoid e = lv_of(t);
-        js << (t ? ", " : "") << "{\"center\": [" << e.c.x << ", " << e.c.y << ", " << e.c.z << "], \"axes\": [" << e.a.x
-           << ", " << e.a.y << ", " << e.a.z << "]}";
+        js << (t ? ", " : "") << "{\"center\": [" << e.c.x << ", " << e.c.y << ", " << e.c.z << "], \"axes\": ["
+           << e.a.x << ", " << e.a.y << ", " << e.a.z << "]}";
       }
       js << "]}\n";
       std::printf("wrote %s and %s.json\n", path.c_str(), path.c_str());

@@ -47,22 +47,20 @@ void run(benchmark::State& state, c4d::MorphMethod method,
   const double frames = static_cast<double>(seq.frames.size());
   state.counters["vertices"] = static_cast<double>(vertices);
   state.counters["frames"] = frames;
-  state.counters["us_per_vertex_frame"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * static_cast<double>(vertices) * frames / 1e6,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["us_per_vertex_frame"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(vertices) * frames / 1e6,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   // Lim et al. report 4.5 ms per vertex per frame; speed-up = 4500 µs / ours.
-  state.counters["speedup_vs_paper"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * static_cast<double>(vertices) * frames * 4.5e-3,
-      benchmark::Counter::kIsRate);
+  state.counters["speedup_vs_paper"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(vertices) * frames * 4.5e-3,
+                         benchmark::Counter::kIsRate);
   state.counters["peak_rss_MB"] = peak_rss_mb();
 }
 
 void BM_LeftHeartCycle_RbfProject(benchmark::State& s) { run(s, c4d::MorphMethod::RbfProject); }
 void BM_LeftHeartCycle_PaperRbf(benchmark::State& s) { run(s, c4d::MorphMethod::Rbf); }
 // --method carry: every frame on its own from frame 0's mesh (carry.h), frames in parallel.
-void BM_LeftHeartCycle_Carry(benchmark::State& s) {
-  run(s, c4d::MorphMethod::RbfProject, c4d::AllFramesMethod::Carry);
-}
+void BM_LeftHeartCycle_Carry(benchmark::State& s) { run(s, c4d::MorphMethod::RbfProject, c4d::AllFramesMethod::Carry); }
 
 BENCHMARK(BM_LeftHeartCycle_RbfProject)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_LeftHeartCycle_Carry)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);

@@ -30,7 +30,8 @@ using clock_type = std::chrono::steady_clock;
 
 double coverage(const c4d::Image& im) {
   std::size_t n = 0;
-  for (std::size_t i = 0; i < im.rgba.size(); i += 4) n += !(im.rgba[i] == 255 && im.rgba[i + 1] == 255 && im.rgba[i + 2] == 255);
+  for (std::size_t i = 0; i < im.rgba.size(); i += 4)
+    n += !(im.rgba[i] == 255 && im.rgba[i + 1] == 255 && im.rgba[i + 2] == 255);
   return static_cast<double>(n) / (static_cast<double>(im.width) * im.height);
 }
 
@@ -74,10 +75,11 @@ void table2(const c4d::MeshSequence& classical, const c4d::PatchMesh& pm, int le
   const double mk = std::chrono::duration<double, std::milli>(clock_type::now() - t0).count() / draws;
   std::printf("  %dx%d  classical %zu triangles: %8.2f ms/frame %10zu B/frame (covers %.0f%% of the image)\n", width,
               height, classical.triangles.size(), mc, bc / draws, 100 * cov_c);
-  std::printf("  %dx%d  compact   %llu triangles (base %zu, level %d): %8.2f ms/frame %10zu B/frame (covers %.0f%%), "
-              "%zu B once\n",
-              width, height, static_cast<unsigned long long>(shown), pm.triangles.size(), level, mk, bk / draws,
-              100 * cov_k, r.patches().static_bytes());
+  std::printf(
+      "  %dx%d  compact   %llu triangles (base %zu, level %d): %8.2f ms/frame %10zu B/frame (covers %.0f%%), "
+      "%zu B once\n",
+      width, height, static_cast<unsigned long long>(shown), pm.triangles.size(), level, mk, bk / draws, 100 * cov_k,
+      r.patches().static_bytes());
   std::printf("  %dx%d  speed-up %.2fx, %.0fx fewer bytes per frame\n", width, height, mc / mk,
               static_cast<double>(bc) / static_cast<double>(bk));
 }
@@ -102,15 +104,18 @@ int main(int argc, char** argv) {
   const CompactModel smodel = compact_encode(seq, so, nullptr, &ss);
   const std::size_t c4d = serialize_model_c4d(model).size(), c4ds = serialize_model_c4d(smodel).size();
   const std::size_t glb = gltf_glb_bytes(seq).size();
-  const double vtp = static_cast<double>(nv * 24 + nt * 32) * frames, ply = static_cast<double>(nv * 12 + nt * 13) * frames;
+  const double vtp = static_cast<double>(nv * 24 + nt * 32) * frames,
+               ply = static_cast<double>(nv * 12 + nt * 13) * frames;
   std::printf("Table I  %zu vertices, %zu triangles, %zu frames (encode %.2f s)\n", nv, nt, frames, enc_s);
   std::printf("  per-frame VTP  %12.0f B  (%.0fx model.c4d)\n", vtp, vtp / c4d);
   std::printf("  per-frame PLY  %12.0f B  (%.0fx model.c4d)\n", ply, ply / c4d);
-  std::printf("  model.c4d      %12zu B  (before zstd: index %zu, positions %zu, motion %zu, corrections %zu [%zu]) vertex max %.4f mm\n",
-              c4d, st.index_bytes, st.position_bytes, st.motion_bytes, st.correction_bytes, st.corrected_vertices,
-              st.max_error);
-  std::printf("  model.c4d      %12zu B  --error surface: surface max %.4f mm (%.0fx PLY)\n", c4ds, ss.max_surface_error,
-              ply / c4ds);
+  std::printf(
+      "  model.c4d      %12zu B  (before zstd: index %zu, positions %zu, motion %zu, corrections %zu [%zu]) vertex max "
+      "%.4f mm\n",
+      c4d, st.index_bytes, st.position_bytes, st.motion_bytes, st.correction_bytes, st.corrected_vertices,
+      st.max_error);
+  std::printf("  model.c4d      %12zu B  --error surface: surface max %.4f mm (%.0fx PLY)\n", c4ds,
+              ss.max_surface_error, ply / c4ds);
   std::printf("  model.glb      %12zu B\n", glb);
 
   t0 = clock_type::now();
@@ -132,10 +137,12 @@ int main(int argc, char** argv) {
     s.width = s.height = 64;
     shown = probe.patches().count_triangles(s);
   }
-  const int cpu_level = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(shown) / pm.triangles.size()))));
+  const int cpu_level =
+      std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(shown) / pm.triangles.size()))));
   const MeshSequence classical = tessellate_patches(pm, cpu_level);
-  std::printf("  base %zu triangles, maps %d steps/edge (bake %.2f s, %zu samples missed); classical = CPU lattice level %d\n",
-              pm.triangles.size(), po.grid, bake_s, pm.missed, cpu_level);
+  std::printf(
+      "  base %zu triangles, maps %d steps/edge (bake %.2f s, %zu samples missed); classical = CPU lattice level %d\n",
+      pm.triangles.size(), po.grid, bake_s, pm.missed, cpu_level);
   table2(classical, pm, level, 800, 600, draws);
   table2(classical, pm, level, 64, 64, draws);
   return 0;

@@ -58,7 +58,8 @@ BENCHMARK_CAPTURE(phantom, ellipsoid, std::string("ellipsoid"), false, true)->Un
 BENCHMARK_CAPTURE(phantom, ellipsoid_nocheck, std::string("ellipsoid"), false, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(phantom, ellipsoid_oblique, std::string("ellipsoid"), true, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(phantom, left_heart_ed, std::string("left-heart-ed"), false, true)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(phantom, left_heart_ed_nocheck, std::string("left-heart-ed"), false, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(phantom, left_heart_ed_nocheck, std::string("left-heart-ed"), false, false)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(phantom, left_heart_es, std::string("left-heart-es"), false, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(phantom, torus, std::string("torus"), false, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(phantom, bifurcation, std::string("bifurcation"), false, true)->Unit(benchmark::kMillisecond);
@@ -69,8 +70,7 @@ BENCHMARK_CAPTURE(phantom, left_heart_ed_bands, std::string("left-heart-ed"), fa
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(phantom, left_heart_es_bands, std::string("left-heart-es"), false, true, false)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(phantom, torus_bands, std::string("torus"), false, true, false)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(phantom, torus_bands, std::string("torus"), false, true, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bivme, frame0_bands, true, false)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) { return c4d::bench::run_benchmarks(argc, argv); }

@@ -30,8 +30,6 @@ c4d_require(meshoptimizer libmeshoptimizer-dev)
 # model.c4d: the payload is one zstd frame (docs/compact.md).
 c4d_require(zstd libzstd-dev)
 
-# Headless rendering (EGL + OpenGL, Mesa's llvmpipe where there is no GPU) and the viewer (GLFW).
+# Headless rendering (EGL + OpenGL, Mesa's llvmpipe where there is no GPU); the viewer's window (GLFW) is
+# optional and looked for in src/render/CMakeLists.txt.
 find_package(OpenGL COMPONENTS OpenGL EGL)
-if(C4D_BUILD_VIEWER)
-  c4d_require(glfw3 libglfw3-dev)
-endif()

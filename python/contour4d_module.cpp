@@ -41,18 +41,20 @@ ExceptionClasses& exception_classes() {
 
 py::object new_exception(py::module_& m, const char* name, const py::object& base, const char* doc) {
   const std::string qualified = std::string("contour4d.") + name;
-  py::object cls = py::reinterpret_steal<py::object>(
-      PyErr_NewExceptionWithDoc(qualified.c_str(), doc, base.ptr(), nullptr));
+  py::object cls =
+      py::reinterpret_steal<py::object>(PyErr_NewExceptionWithDoc(qualified.c_str(), doc, base.ptr(), nullptr));
   m.attr(name) = cls;
   return cls;
 }
 
 void register_exceptions(py::module_& m) {
   ExceptionClasses& c = exception_classes();
-  c.error = new_exception(m, "Error", py::reinterpret_borrow<py::object>(PyExc_RuntimeError),
-                          "A contour4d failure: .exit_code is the command line's exit code (docs/cli.md), .hint what to do.");
+  c.error =
+      new_exception(m, "Error", py::reinterpret_borrow<py::object>(PyExc_RuntimeError),
+                    "A contour4d failure: .exit_code is the command line's exit code (docs/cli.md), .hint what to do.");
   c.io_error = new_exception(m, "IoError", c.error, "A file could not be read or written.");
-  c.invalid_input = new_exception(m, "InvalidInput", c.error, "The input violates the model (values, geometry, structure).");
+  c.invalid_input =
+      new_exception(m, "InvalidInput", c.error, "The input violates the model (values, geometry, structure).");
   c.solver_error = new_exception(m, "SolverError", c.error,
                                  "A numerical stage failed, or the result failed its checks (exit_code 26).");
   py::register_exception_translator([](std::exception_ptr p) {
@@ -104,7 +106,8 @@ py::dict mesh_dict(const MeshSequence& seq) {
   auto t = triangles.mutable_unchecked<2>();
   for (std::size_t i = 0; i < seq.triangles.size(); ++i)
     for (int k = 0; k < 3; ++k) t(static_cast<py::ssize_t>(i), k) = seq.triangles[i][static_cast<std::size_t>(k)];
-  return py::dict("positions"_a = positions, "triangles"_a = triangles, "times_ms"_a = py::array(py::cast(seq.times_ms)));
+  return py::dict("positions"_a = positions, "triangles"_a = triangles,
+                  "times_ms"_a = py::array(py::cast(seq.times_ms)));
 }
 
 MeshSequence mesh_from(const py::dict& d) {
@@ -125,13 +128,16 @@ MeshSequence mesh_from(const py::dict& d) {
     Triangle tr{};
     for (int k = 0; k < 3; ++k) {
       if (t(i, k) < 0 || t(i, k) >= pos.shape(1))
-        throw InvalidInput(ErrorCode::BadMesh, Location{"mesh"}, "triangle " + std::to_string(i) + " indexes no vertex");
+        throw InvalidInput(ErrorCode::BadMesh, Location{"mesh"},
+                           "triangle " + std::to_string(i) + " indexes no vertex");
       tr[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(t(i, k));
     }
     seq.triangles.push_back(tr);
   }
-  if (d.contains("times_ms")) seq.times_ms = d["times_ms"].cast<std::vector<double>>();
-  else for (std::size_t f = 0; f < seq.positions.size(); ++f) seq.times_ms.push_back(static_cast<double>(f));
+  if (d.contains("times_ms"))
+    seq.times_ms = d["times_ms"].cast<std::vector<double>>();
+  else
+    for (std::size_t f = 0; f < seq.positions.size(); ++f) seq.times_ms.push_back(static_cast<double>(f));
   return seq;
 }
 
@@ -144,16 +150,25 @@ InputOptions input_options(const py::kwargs& kw) {
   for (auto item : kw) {
     const std::string k = py::str(item.first);
     const py::handle v = item.second;
-    if (k == "type") o.contour_types = py::isinstance<py::str>(v) ? std::vector<std::string>{v.cast<std::string>()}
-                                                                   : v.cast<std::vector<std::string>>();
-    else if (k == "label") o.label = v.cast<std::string>();
-    else if (k == "labels") o.label_preset = v.cast<std::string>();
-    else if (k == "slice_axis") o.slice_axis = v.cast<int>();
-    else if (k == "space") o.space = v.cast<std::string>();
-    else if (k == "frame_ms") o.frame_ms = v.cast<double>();
-    else if (k == "cycle_ms") o.cycle_ms = v.cast<double>();
-    else if (k == "strict") o.strict = v.cast<bool>();
-    else throw InvalidInput(ErrorCode::Usage, Location{}, "unknown option " + k + "=");
+    if (k == "type")
+      o.contour_types = py::isinstance<py::str>(v) ? std::vector<std::string>{v.cast<std::string>()}
+                                                   : v.cast<std::vector<std::string>>();
+    else if (k == "label")
+      o.label = v.cast<std::string>();
+    else if (k == "labels")
+      o.label_preset = v.cast<std::string>();
+    else if (k == "slice_axis")
+      o.slice_axis = v.cast<int>();
+    else if (k == "space")
+      o.space = v.cast<std::string>();
+    else if (k == "frame_ms")
+      o.frame_ms = v.cast<double>();
+    else if (k == "cycle_ms")
+      o.cycle_ms = v.cast<double>();
+    else if (k == "strict")
+      o.strict = v.cast<bool>();
+    else
+      throw InvalidInput(ErrorCode::Usage, Location{}, "unknown option " + k + "=");
   }
   return o;
 }
@@ -181,8 +196,8 @@ InputResult read_list(const py::list& contours, const InputOptions& options) {
     }
     raw.push_back(std::move(r));
   }
-  if (!times.empty() && (times.size() != static_cast<std::size_t>(frames) ||
-                         std::find(times.begin(), times.end(), -1.0) != times.end()))
+  if (!times.empty() &&
+      (times.size() != static_cast<std::size_t>(frames) || std::find(times.begin(), times.end(), -1.0) != times.end()))
     throw InvalidInput(ErrorCode::Parse, Location{"contours"}, "give \"time_ms\" on every contour or on none");
   py::gil_scoped_release release;
   return read_contour_list(std::move(raw), frames, times, "contours", options);
@@ -244,7 +259,8 @@ ReconstructRunOptions run_options(py::kwargs& kw) {
 }
 
 py::dict reconstruct(const py::object& input, const std::optional<std::filesystem::path>& output,
-                     const std::optional<std::filesystem::path>& keep_failed, const std::string& format, py::kwargs kw) {
+                     const std::optional<std::filesystem::path>& keep_failed, const std::string& format,
+                     py::kwargs kw) {
   ReconstructRunOptions options = run_options(kw);
   const InputOptions in = input_options(kw);
   options.label = in.label;
@@ -257,7 +273,8 @@ py::dict reconstruct(const py::object& input, const std::optional<std::filesyste
     std::optional<OutputDir> out;
     if (output) out.emplace(*output);
     run = reconstruct_run(read, name, options);
-    if (out) write_run(*out, run, formats, keep_failed ? keep_failed->string() : std::string());
+    if (out)
+      write_run(*out, run, formats, keep_failed ? keep_failed->string() : std::string());
     else
       throw_if_failed(run, "pass output= and keep_failed= to write the failed result for debugging");
   }
@@ -292,7 +309,8 @@ py::dict evaluate_folder(const std::filesystem::path& outdir, const std::optiona
     opt.conformity.step = step;
     opt.sampling.spacing = sample_spacing;
     opt.topology.self_intersections = self_intersections;
-    text = format_evaluation_json(evaluate(meshes, seq ? &*seq : nullptr, truth_frames ? &*truth_frames : nullptr, opt));
+    text =
+        format_evaluation_json(evaluate(meshes, seq ? &*seq : nullptr, truth_frames ? &*truth_frames : nullptr, opt));
     if (json) write_file_atomic(*json, text);
   }
   return json_loads(text);
@@ -309,7 +327,7 @@ py::dict load(const std::filesystem::path& path) {
 
 py::dict pack(const py::object& input, const std::optional<std::filesystem::path>& output, double tolerance,
               const std::string& error, std::size_t controls, std::size_t resample, const std::string& interp,
-              bool gltf, bool gltf_step) {
+              bool gltf, bool gltf_step, bool gltf_quantized) {
   PackRunOptions o;
   o.tolerance = tolerance;
   o.error = error;
@@ -318,6 +336,7 @@ py::dict pack(const py::object& input, const std::optional<std::filesystem::path
   o.interp = interp;
   o.gltf = gltf;
   o.gltf_step = gltf_step;
+  o.gltf_quantized = gltf_quantized;
   const bool is_path = !py::isinstance<py::dict>(input);
   const MeshSequence given = is_path ? MeshSequence{} : mesh_from(input.cast<py::dict>());
   const std::filesystem::path path = is_path ? input.cast<std::filesystem::path>() : std::filesystem::path();
@@ -326,8 +345,10 @@ py::dict pack(const py::object& input, const std::optional<std::filesystem::path
   {
     py::gil_scoped_release release;
     run = pack_run(is_path ? load_mesh_sequence(path) : given, o);
-    if (output) out = *output;
-    else if (is_path) out = (std::filesystem::is_directory(path) ? path : path.parent_path()) / "model.c4d";
+    if (output)
+      out = *output;
+    else if (is_path)
+      out = (std::filesystem::is_directory(path) ? path : path.parent_path()) / "model.c4d";
     if (!out.empty()) {
       write_file_atomic(out, run.c4d);
       if (!run.glb.empty()) write_file_atomic(std::filesystem::path(out).replace_extension(".glb"), run.glb);
@@ -346,7 +367,8 @@ py::dict unpack(const py::object& model, const std::optional<std::filesystem::pa
                 const std::string& interp, const std::string& format) {
   const bool is_bytes = py::isinstance<py::bytes>(model);
   const std::string bytes = is_bytes ? model.cast<std::string>() : std::string();
-  const std::filesystem::path path = is_bytes ? std::filesystem::path("model.c4d") : model.cast<std::filesystem::path>();
+  const std::filesystem::path path =
+      is_bytes ? std::filesystem::path("model.c4d") : model.cast<std::filesystem::path>();
   MeshSequence seq;
   {
     py::gil_scoped_release release;
@@ -367,21 +389,25 @@ py::dict unpack(const py::object& model, const std::optional<std::filesystem::pa
 PYBIND11_MODULE(contour4d, m) {
   using namespace c4d::python;
   namespace fs = std::filesystem;
-  m.doc() = "contour4d: segmented contours and label masks to 4D surface meshes with 1-to-1 vertex correspondence.\n"
-            "Lengths in mm, times in ms, coordinates in the input's patient space (LPS unless space='ras').";
+  m.doc() =
+      "contour4d: segmented contours and label masks to 4D surface meshes with 1-to-1 vertex correspondence.\n"
+      "Lengths in mm, times in ms, coordinates in the input's patient space (LPS unless space='ras').";
   m.attr("__version__") = "0.1.0";
   register_exceptions(m);
-  m.def("read", &read_to_dict, "input"_a,
-        "Reads any supported input (contour JSON, GPFile folder, Sunnybrook folder, label images; or a list of contour\n"
-        "dicts) into {'contours': [{'frame', 'slice', 'label', 'offset_mm', 'time_ms', 'points': (n, 3)}], 'timing',\n"
-        "'repairs', 'notes', 'format', 'space', 'stack_normal', 'frames'}.\n"
-        "Options as `contour4d reconstruct`'s: type, label ('all': every structure), labels, slice_axis, space,\n"
-        "frame_ms, cycle_ms, strict.");
-  m.def("reconstruct", &reconstruct, "input"_a, "output"_a = py::none(), "keep_failed"_a = py::none(), "format"_a = "vtp",
+  m.def(
+      "read", &read_to_dict, "input"_a,
+      "Reads any supported input (contour JSON, GPFile folder, Sunnybrook folder, label images; or a list of contour\n"
+      "dicts) into {'contours': [{'frame', 'slice', 'label', 'offset_mm', 'time_ms', 'points': (n, 3)}], 'timing',\n"
+      "'repairs', 'notes', 'format', 'space', 'stack_normal', 'frames'}.\n"
+      "Options as `contour4d reconstruct`'s: type, label ('all': every structure), labels, slice_axis, space,\n"
+      "frame_ms, cycle_ms, strict.");
+  m.def("reconstruct", &reconstruct, "input"_a, "output"_a = py::none(), "keep_failed"_a = py::none(),
+        "format"_a = "vtp",
         "Reconstructs INPUT (a path, a list of contour dicts, or read()'s dict) as `contour4d reconstruct` does.\n"
         "Returns {'positions': (frames, vertices, 3), 'triangles': (n, 3), 'times_ms': (frames,), 'report': dict}.\n"
         "With output= the same files as the command line are written there. Options: frame, edge, cap, method,\n"
-        "threads, volume_tolerance, vertical_deformation, tiling, and read()'s. A result that fails its checks raises SolverError (exit_code 26).");
+        "threads, volume_tolerance, vertical_deformation, tiling, and read()'s. A result that fails its checks raises "
+        "SolverError (exit_code 26).");
   m.def("evaluate", &evaluate_folder, "outdir"_a, "contours"_a = py::none(), "truth"_a = py::none(), "label"_a = "",
         "type"_a = std::vector<std::string>{}, "step"_a = 0.2, "sample_spacing"_a = 0.5, "self_intersections"_a = true,
         "json"_a = py::none(),
@@ -390,6 +416,7 @@ PYBIND11_MODULE(contour4d, m) {
   m.def("load", &load, "path"_a, "Reads a reconstruction folder (mesh.pvd, frames/) into the mesh dict.");
   m.def("pack", &pack, "input"_a, "output"_a = py::none(), "tolerance"_a = 0.05, "error"_a = "vertex",
         "controls"_a = 600, "resample"_a = 0, "interp"_a = "catmull-rom", "gltf"_a = true, "gltf_step"_a = false,
+        "gltf_quantized"_a = false,
         "Packs a reconstruction folder (or a mesh dict) into model.c4d as `contour4d pack` does; written to output=\n"
         "(default INPUT/model.c4d for a folder) with model.glb beside it. Returns the figures and the bytes.");
   m.def("unpack", &unpack, "model"_a, "output"_a = py::none(), "resample"_a = 0, "interp"_a = "catmull-rom",

@@ -21,8 +21,8 @@ int run(int argc, char** argv) {
       "Examples:\n"
       "  contour4d phantom left-heart -o lh            # analytic phantom: contours + true surface\n"
       "  contour4d evaluate lh/truth --contours lh/contours.json\n"
-      "  contour4d extract ../shared/data/bivme-patient1/guidepoints -o lv.json\n"
-      "  contour4d reconstruct lv.json -o out          # 4D mesh (see `contour4d reconstruct --help`)\n",
+      "  contour4d reconstruct lh/contours.json -o out  # 4D mesh (see `contour4d reconstruct --help`)\n"
+      "  contour4d view out                            # play it (window), or `contour4d render out -o png`\n",
       "contour4d"};
   root.require_subcommand(1);
   root.set_version_flag("--version", "contour4d 0.1.0");

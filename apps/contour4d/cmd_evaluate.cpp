@@ -81,16 +81,24 @@ void add_evaluate_command(CLI::App& root, std::vector<Command>& commands) {
       "  contour4d evaluate out --check                        # exit code 25 on any mesh fault (CI)\n");
   auto args = std::make_shared<EvaluateArgs>();
   app->add_option("OUTDIR", args->outdir, "output folder of a reconstruction (mesh.pvd, frames/)")->required();
-  app->add_option("--contours", args->contours, "the input contours (JSON file or GPFile folder): conformity, Simpson volume, slab");
-  app->add_option("--truth", args->truth, "folder of ground-truth meshes (same layout); frame i compares with frame i");
+  app->add_option("--contours", args->contours,
+                  "the input contours (JSON file or GPFile folder): conformity, Simpson volume, slab");
+  app->add_option("--truth,--reference", args->truth,
+                  "folder of reference meshes (same layout; frame i compares with frame i): a phantom's truth, each "
+                  "frame's own one-frame surface, or the exact meshes of a packed model (distances both ways and "
+                  "the angle of each triangle's normal to the reference's)");
   app->add_option("--json", args->json, "where to write the JSON report (default OUTDIR/evaluation.json)");
   app->add_option("--label", args->label, "use only the contours with this label");
-  app->add_option("--type", args->contour_types, "GPFile contour types to read (repeatable; default SAX_LV_ENDOCARDIAL), as in reconstruct");
-  app->add_option("--step", args->step, "contour sampling interval for conformity (mm)")->default_val(0.2)->check(CLI::PositiveNumber);
+  app->add_option("--type", args->contour_types,
+                  "GPFile contour types to read (repeatable; default SAX_LV_ENDOCARDIAL), as in reconstruct");
+  app->add_option("--step", args->step, "contour sampling interval for conformity (mm)")
+      ->default_val(0.2)
+      ->check(CLI::PositiveNumber);
   app->add_option("--sample-spacing", args->spacing, "surface sample spacing for accuracy (mm)")
       ->default_val(0.5)
       ->check(CLI::PositiveNumber);
-  app->add_flag("--no-self-intersections", args->no_self_intersections, "skip the self-intersection test (the slowest check)");
+  app->add_flag("--no-self-intersections", args->no_self_intersections,
+                "skip the self-intersection test (the slowest check)");
   app->add_flag("--check", args->check, "exit with code 25 (BadMesh) when any mesh or correspondence fault is found");
   commands.push_back({app, [args] { return run_evaluate(*args); }});
 }

@@ -69,7 +69,8 @@ std::string summary(const InputResult& r, const std::string& out) {
       n += sl.contours.size();
       list += (list.empty() ? "" : ",") + std::to_string(sl.id);
     }
-    s += fmt::format("{:>5}  {:>7.1f}  {:>6}  {:>8}  {}\n", f, seq.frames[f].time_ms, seq.frames[f].slices.size(), n, list);
+    s += fmt::format("{:>5}  {:>7.1f}  {:>6}  {:>8}  {}\n", f, seq.frames[f].time_ms, seq.frames[f].slices.size(), n,
+                     list);
   }
   s += "wrote " + out + "\n";
   return s;
@@ -97,10 +98,11 @@ void add_extract_command(CLI::App& root, std::vector<Command>& commands) {
   add_input_options(app, args->in);
   app->footer(
       "Examples:\n"
-      "  contour4d extract ../shared/data/bivme-patient1/guidepoints -o lv.json\n"
-      "  contour4d extract ../shared/data/bivme-patient1 --type SAX_LV_ENDOCARDIAL --type SAX_LV_EPICARDIAL -o lv2.json\n"
+      "  contour4d phantom left-heart -o lh && contour4d extract lh/contours.json -o lv.json   # runs anywhere\n"
+      "  contour4d extract patient1/guidepoints -o lv.json                       # a biv-me GPFile folder\n"
+      "  contour4d extract patient1 --type SAX_LV_ENDOCARDIAL --type SAX_LV_EPICARDIAL -o lv2.json\n"
       "  contour4d extract lv2.json --label lv-epi -o epi.json\n"
-      "  contour4d extract ../shared/data/sunnybrook-SC-HF-I-1 -o sb.json          # endocardium, 2 phases\n"
+      "  contour4d extract SC-HF-I-1 --label all -o sb.json      # a Sunnybrook folder: endo- and epicardium\n"
       "  contour4d extract 'patient001_frame*_gt.nii.gz' --labels acdc --label lv -o lv.json\n"
       "Exit codes name the problem (10 file not found, 12 parse error, 15 degenerate contour, ...; docs/formats.md).");
   commands.push_back({app, [args] { return run_extract(*args); }});

@@ -31,29 +31,33 @@ int run_pack(const PackArgs& a) {
   const std::filesystem::path dir = std::filesystem::is_directory(in) ? in : in.parent_path();
   const std::filesystem::path out = a.output.empty() ? dir / "model.c4d" : std::filesystem::path(a.output);
   write_file_atomic(out, run.c4d);
-  const std::size_t nv = run.input.positions[0].size(), nt = run.input.triangles.size(), nf = run.input.positions.size();
+  const std::size_t nv = run.input.positions[0].size(), nt = run.input.triangles.size(),
+                    nf = run.input.positions.size();
   const std::size_t bytes = run.c4d.size();
   // Per-frame baselines: our VTP writer (Float64 points, Int64 connectivity and offsets) and a
   // binary PLY (float32 xyz, uchar count + 3 int32 per face), headers not counted.
   const double vtp = static_cast<double>(nv * 24 + nt * 32) * static_cast<double>(nf);
   const double ply = static_cast<double>(nv * 12 + nt * 13) * static_cast<double>(nf);
-  std::cout << fmt::format("packed {} frames, {} vertices, {} triangles into {} ({} bytes)\n", nf, nv, nt,
-                           out.string(), bytes)
-            << fmt::format("  zstd level {}: payload {} B before compression, {} B stored ({:.2f}x); file {} B with the "
-                           "{}-byte header\n",
-                           ModelC4dWriteOptions{}.level, run.raw_payload, run.stored_payload,
-                           static_cast<double>(run.raw_payload) / static_cast<double>(run.stored_payload), bytes,
-                           kModelC4dHeaderBytes)
-            << fmt::format("  parts before compression: connectivity {} B, frame-0 positions {} B, control motion {} B "
-                           "({} control vertices), corrections {} B ({} vertex-frames)\n",
-                           st.index_bytes, st.position_bytes, st.motion_bytes, run.model.control.size(), st.correction_bytes,
-                           st.corrected_vertices)
-            << fmt::format("  error vs input: vertex to same vertex max {:.4f} mm, RMS {:.4f} mm; vertex to surface max "
-                           "{:.4f} mm, input vertex to decoded surface max {:.4f} mm (tolerance {} mm on {})\n",
-                           st.max_error, st.rms_error, st.max_surface_error, st.max_surface_error_back, a.pack.tolerance,
-                           a.pack.error)
-            << fmt::format("  per-frame meshes: VTP {:.0f} B ({:.0f}x larger), binary PLY {:.0f} B ({:.0f}x larger)\n", vtp,
-                           vtp / static_cast<double>(bytes), ply, ply / static_cast<double>(bytes));
+  std::cout << fmt::format("packed {} frames, {} vertices, {} triangles into {} ({} bytes)\n", nf, nv, nt, out.string(),
+                           bytes)
+            << fmt::format(
+                   "  zstd level {}: payload {} B before compression, {} B stored ({:.2f}x); file {} B with the "
+                   "{}-byte header\n",
+                   ModelC4dWriteOptions{}.level, run.raw_payload, run.stored_payload,
+                   static_cast<double>(run.raw_payload) / static_cast<double>(run.stored_payload), bytes,
+                   kModelC4dHeaderBytes)
+            << fmt::format(
+                   "  parts before compression: connectivity {} B, frame-0 positions {} B, control motion {} B "
+                   "({} control vertices), corrections {} B ({} vertex-frames)\n",
+                   st.index_bytes, st.position_bytes, st.motion_bytes, run.model.control.size(), st.correction_bytes,
+                   st.corrected_vertices)
+            << fmt::format(
+                   "  error vs input: vertex to same vertex max {:.4f} mm, RMS {:.4f} mm; vertex to surface max "
+                   "{:.4f} mm, input vertex to decoded surface max {:.4f} mm (tolerance {} mm on {})\n",
+                   st.max_error, st.rms_error, st.max_surface_error, st.max_surface_error_back, a.pack.tolerance,
+                   a.pack.error)
+            << fmt::format("  per-frame meshes: VTP {:.0f} B ({:.0f}x larger), binary PLY {:.0f} B ({:.0f}x larger)\n",
+                           vtp, vtp / static_cast<double>(bytes), ply, ply / static_cast<double>(bytes));
   if (!run.glb.empty()) {
     const std::filesystem::path gp = std::filesystem::path(out).replace_extension(".glb");
     write_file_atomic(gp, run.glb);
@@ -98,25 +102,34 @@ void add_pack_command(CLI::App& root, std::vector<Command>& commands) {
       "  contour4d pack out --error surface            # Table I: 0.05 mm to the surface, vertices may slide\n"
       "  contour4d pack out --resample 60 --interp catmull-rom   # 60 frames over the cycle\n");
   auto args = std::make_shared<PackArgs>();
-  app->add_option("INPUT", args->input, "output folder of a reconstruction (mesh.pvd, frames/) or a model.c4d")->required();
+  app->add_option("INPUT", args->input, "output folder of a reconstruction (mesh.pvd, frames/) or a model.c4d")
+      ->required();
   app->add_option("-o,--output", args->output, "model file (default INPUT/model.c4d); the .glb goes beside it");
-  app->add_option("--tolerance", args->pack.tolerance, "max error of any vertex in any frame (mm)")->default_val(0.05)->check(CLI::PositiveNumber);
+  app->add_option("--tolerance", args->pack.tolerance, "max error of any vertex in any frame (mm)")
+      ->default_val(0.05)
+      ->check(CLI::PositiveNumber);
   app->add_option("--error", args->pack.error,
                   "what --tolerance bounds: vertex (each decoded vertex vs the same input vertex; exact "
                   "correspondence) or surface (decoded vertex vs the input surface; vertices may slide along it)")
       ->check(CLI::IsMember({"vertex", "surface"}))
       ->default_val("vertex");
-  app->add_option("--controls", args->pack.controls, "number of control vertices carrying the motion")->default_val(600);
+  app->add_option("--controls", args->pack.controls, "number of control vertices carrying the motion")
+      ->default_val(600);
   app->add_option("--resample", args->pack.resample, "resample to N frames before packing (0: keep)")->default_val(0);
-  app->add_option("--interp", args->pack.interp, "interpolation for --resample")->check(CLI::IsMember({"linear", "catmull-rom", "step"}))->default_val("catmull-rom");
-  app->add_flag_callback("--no-gltf", [args] { args->pack.gltf = false; }, "do not write the .glb");
+  app->add_option("--interp", args->pack.interp, "interpolation for --resample")
+      ->check(CLI::IsMember({"linear", "catmull-rom", "step"}))
+      ->default_val("catmull-rom");
+  app->add_flag_callback(
+      "--no-gltf", [args] { args->pack.gltf = false; }, "do not write the .glb");
   app->add_flag("--gltf-step", args->pack.gltf_step, "STEP animation in the .glb instead of LINEAR");
+  app->add_flag("--gltf-quantized", args->pack.gltf_quantized,
+                "a compact .glb (KHR_mesh_quantization, no normals) instead of the plain one every glTF reader loads");
   commands.push_back({app, [args] { return run_pack(*args); }});
 }
 
 void add_unpack_command(CLI::App& root, std::vector<Command>& commands) {
-  CLI::App* app = root.add_subcommand("unpack",
-                                      "Restore per-frame meshes (mesh.pvd, frames/*.vtp, *.obj) from a model.c4d.");
+  CLI::App* app =
+      root.add_subcommand("unpack", "Restore per-frame meshes (mesh.pvd, frames/*.vtp, *.obj) from a model.c4d.");
   app->footer(
       "Examples:\n"
       "  contour4d unpack out/model.c4d -o restored\n"
@@ -127,7 +140,9 @@ void add_unpack_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_option("--format", args->format, "mesh files per frame: vtp (with mesh.pvd, always) and obj, e.g. vtp,obj")
       ->capture_default_str();
   app->add_option("--resample", args->resample, "resample to N frames (0: keep)")->default_val(0);
-  app->add_option("--interp", args->interp, "interpolation for --resample")->check(CLI::IsMember({"linear", "catmull-rom", "step"}))->default_val("catmull-rom");
+  app->add_option("--interp", args->interp, "interpolation for --resample")
+      ->check(CLI::IsMember({"linear", "catmull-rom", "step"}))
+      ->default_val("catmull-rom");
   commands.push_back({app, [args] { return run_unpack(*args); }});
 }
 

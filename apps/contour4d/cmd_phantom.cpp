@@ -26,8 +26,8 @@ struct PhantomArgs {
   std::string out;
   bool list = false;
   PhantomOptions options;
-  std::string mask;                   // label image to write ("" = none)
-  std::vector<double> mask_spacing;   // X,Y (in-plane voxel size, mm) or X,Y,Z (Z sets the slice spacing)
+  std::string mask;                  // label image to write ("" = none)
+  std::vector<double> mask_spacing;  // X,Y (in-plane voxel size, mm) or X,Y,Z (Z sets the slice spacing)
   int mask_label = 1;
 };
 
@@ -45,11 +45,12 @@ std::string truth_json(const Phantom& ph, const PhantomOptions& o) {
   j["description"] = ph.description;
   j["units"] = "mm";
   j["space"] = o.oblique ? "phantom frame moved by the oblique rigid motion (docs/phantoms.md)" : "phantom frame";
-  j["parameters"] = {{"spacing_mm", o.spacing},
-                     {"offset_mm", std::isnan(o.offset) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(o.offset)},
-                     {"frames", ph.truth.size()},
-                     {"oblique", o.oblique},
-                     {"truth_edge_mm", o.truth_edge}};
+  j["parameters"] = {
+      {"spacing_mm", o.spacing},
+      {"offset_mm", std::isnan(o.offset) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(o.offset)},
+      {"frames", ph.truth.size()},
+      {"oblique", o.oblique},
+      {"truth_edge_mm", o.truth_edge}};
   j["slab"] = {{"normal", {ph.contours.normal.x, ph.contours.normal.y, ph.contours.normal.z}},
                {"min_offset_mm", ph.slab_min},
                {"max_offset_mm", ph.slab_max}};
@@ -75,7 +76,8 @@ std::string truth_json(const Phantom& ph, const PhantomOptions& o) {
 void write_mask_atomic(const std::string& file, const std::vector<LabelVolume>& mask) {
   namespace fs = std::filesystem;
   const fs::path target(file);
-  const fs::path tmp = target.parent_path() / (".c4d-tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
+  const fs::path tmp =
+      target.parent_path() / (".c4d-tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
   try {
     write_label_volume(tmp, mask);
     fs::rename(tmp, target);
@@ -89,7 +91,9 @@ void write_mask_atomic(const std::string& file, const std::vector<LabelVolume>& 
 int run_phantom(const PhantomArgs& a) {
   if (a.list || a.name.empty()) {
     std::cout << "Phantoms:\n" << catalogue_text();
-    if (!a.list) throw InvalidInput(ErrorCode::Usage, {}, "no phantom named", "give a name, e.g. `contour4d phantom left-heart -o lh`");
+    if (!a.list)
+      throw InvalidInput(ErrorCode::Usage, {}, "no phantom named",
+                         "give a name, e.g. `contour4d phantom left-heart -o lh`");
     return 0;
   }
   if (a.out.empty() && a.mask.empty())
@@ -113,9 +117,9 @@ int run_phantom(const PhantomArgs& a) {
   if (a.out.empty()) {
     write_mask_atomic(a.mask, mask);
     const LabelVolume& v = mask.front();
-    std::cout << fmt::format("phantom {}: wrote mask {} ({}x{}x{} voxels of {:.3g}x{:.3g}x{:.3g} mm, {} frame(s), label {})\n",
-                             ph.name, a.mask, v.dims[0], v.dims[1], v.dims[2], v.spacing[0], v.spacing[1], v.spacing[2],
-                             mask.size(), ro.label);
+    std::cout << fmt::format(
+        "phantom {}: wrote mask {} ({}x{}x{} voxels of {:.3g}x{:.3g}x{:.3g} mm, {} frame(s), label {})\n", ph.name,
+        a.mask, v.dims[0], v.dims[1], v.dims[2], v.spacing[0], v.spacing[1], v.spacing[2], mask.size(), ro.label);
     return 0;
   }
   OutputDir out(a.out);
@@ -137,9 +141,9 @@ int run_phantom(const PhantomArgs& a) {
     for (const Slice& s : f.slices) contours += s.contours.size();
   for (const TriangleMesh& m : ph.truth) triangles += m.triangles.size();
   std::cout << fmt::format("phantom {}: {}\n", ph.name, ph.description);
-  std::cout << fmt::format("  {} frame(s), {} contours, slice planes {:.2f} .. {:.2f} mm along ({:.3f}, {:.3f}, {:.3f})\n",
-                           ph.truth.size(), contours, ph.slab_min, ph.slab_max, ph.contours.normal.x,
-                           ph.contours.normal.y, ph.contours.normal.z);
+  std::cout << fmt::format(
+      "  {} frame(s), {} contours, slice planes {:.2f} .. {:.2f} mm along ({:.3f}, {:.3f}, {:.3f})\n", ph.truth.size(),
+      contours, ph.slab_min, ph.slab_max, ph.contours.normal.x, ph.contours.normal.y, ph.contours.normal.z);
   double vmin = std::numeric_limits<double>::infinity(), vmax = -vmin;
   for (double v : ph.true_volume_mm3) vmin = std::min(vmin, v), vmax = std::max(vmax, v);
   std::cout << fmt::format("  true volume {:.1f} .. {:.1f} mL, truth {} triangles in all\n", vmin / 1000, vmax / 1000,
@@ -147,10 +151,10 @@ int run_phantom(const PhantomArgs& a) {
   std::cout << fmt::format("  wrote {}/contours.json and {}/truth/ (mesh.pvd, frames/, truth.json)\n", a.out, a.out);
   if (!a.mask.empty()) {
     const LabelVolume& v = mask.front();
-    std::cout << fmt::format("  wrote mask {}: {}x{}x{} voxels of {:.3g}x{:.3g}x{:.3g} mm, {} frame(s), label {}; "
-                             "voxel k = slice id\n",
-                             a.mask, v.dims[0], v.dims[1], v.dims[2], v.spacing[0], v.spacing[1], v.spacing[2],
-                             mask.size(), ro.label);
+    std::cout << fmt::format(
+        "  wrote mask {}: {}x{}x{} voxels of {:.3g}x{:.3g}x{:.3g} mm, {} frame(s), label {}; "
+        "voxel k = slice id\n",
+        a.mask, v.dims[0], v.dims[1], v.dims[2], v.spacing[0], v.spacing[1], v.spacing[2], mask.size(), ro.label);
   }
   return 0;
 }
@@ -164,27 +168,31 @@ void add_phantom_command(CLI::App& root, std::vector<Command>& commands) {
       "Write an analytic phantom: its contours (contours.json) and its true surface per frame (truth/).\n"
       "Every contour lies exactly on the truth mesh (its vertices and edges are truth vertices and edges).\n"
       "Coordinates in mm in the phantom's own frame (docs/phantoms.md).");
-  app->footer("Phantoms:\n" + catalogue_text() +
-              "\nExamples:\n"
-              "  contour4d phantom --list\n"
-              "  contour4d phantom left-heart -o lh                 # ED, ES, ED; slices y = 32.5 - 5k\n"
-              "  contour4d phantom ellipsoid -o el --frames 10 --spacing 8\n"
-              "  contour4d phantom torus -o tor --oblique           # rotated 30 deg about (1,2,3), moved (12,-7,33)\n"
-              "  contour4d phantom left-heart-cycle -o lh --oblique --mask lh/mask.nii.gz --mask-spacing 1,1,8\n"
-              "                                                     # + a 4D label image sampled on the slice planes\n");
+  app->footer(
+      "Phantoms:\n" + catalogue_text() +
+      "\nExamples:\n"
+      "  contour4d phantom --list\n"
+      "  contour4d phantom left-heart -o lh                 # ED, ES, ED; slices y = 32.5 - 5k\n"
+      "  contour4d phantom ellipsoid -o el --frames 10 --spacing 8\n"
+      "  contour4d phantom torus -o tor --oblique           # rotated 30 deg about (1,2,3), moved (12,-7,33)\n"
+      "  contour4d phantom left-heart-cycle -o lh --oblique --mask lh/mask.nii.gz --mask-spacing 1,1,8\n"
+      "                                                     # + a 4D label image sampled on the slice planes\n");
   app->add_option("name", args->name, "phantom name (see --list)");
   app->add_option("-o,--output", args->out, "output folder (replaced atomically)");
   app->add_flag("--list", args->list, "list the phantoms and exit");
   app->add_option("--spacing", args->options.spacing, "distance between slice planes (mm)")->capture_default_str();
-  app->add_option("--offset", args->options.offset, "height of one slice plane on the slice axis (mm; default per phantom)");
-  app->add_option("--frames", args->options.frames, "frames of a cyclic phantom (0: its default)")->capture_default_str();
+  app->add_option("--offset", args->options.offset,
+                  "height of one slice plane on the slice axis (mm; default per phantom)");
+  app->add_option("--frames", args->options.frames, "frames of a cyclic phantom (0: its default)")
+      ->capture_default_str();
   app->add_flag("--oblique", args->options.oblique, "apply the fixed oblique rigid motion to contours and truth");
   app->add_option("--truth-edge", args->options.truth_edge, "target edge length of the truth mesh (mm)")
       ->capture_default_str();
   app->add_option("--mask", args->mask,
                   "also write the phantom as a label image (.nii.gz, .nii, .nrrd, .mha; 4D for several frames): "
                   "voxel centres inside the analytic surface, slices on the phantom's slice planes");
-  app->add_option("--mask-spacing", args->mask_spacing, "mask voxel size X,Y (in-plane, mm; default 1,1) or X,Y,Z (Z sets --spacing)")
+  app->add_option("--mask-spacing", args->mask_spacing,
+                  "mask voxel size X,Y (in-plane, mm; default 1,1) or X,Y,Z (Z sets --spacing)")
       ->delimiter(',');
   app->add_option("--mask-label", args->mask_label, "label value of the mask")->capture_default_str();
   commands.push_back({app, [args] { return run_phantom(*args); }});

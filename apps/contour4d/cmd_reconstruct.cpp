@@ -30,11 +30,13 @@ struct ReconstructArgs {
 
 // The input summary: what was read, the notes of the reader and the first repairs (flushed before the work).
 void print_input_summary(const ReconstructArgs& a, const InputResult& read) {
-  std::cout << fmt::format("contour4d reconstruct: {} ({}), {} frames\n", a.input, read.format, read.sequence.frames.size());
+  std::cout << fmt::format("contour4d reconstruct: {} ({}), {} frames\n", a.input, read.format,
+                           read.sequence.frames.size());
   for (const std::string& n : read.notes) std::cout << "  " << n << "\n";
   for (std::size_t k = 0; k < read.repairs.size() && k < 10; ++k) {
     const ContourRepair& r = read.repairs[k];
-    std::cout << fmt::format("    repaired frame {}, slice {}, contour {}: {}\n", r.frame, r.slice, r.contour, r.detail);
+    std::cout << fmt::format("    repaired frame {}, slice {}, contour {}: {}\n", r.frame, r.slice, r.contour,
+                             r.detail);
   }
   if (read.repairs.size() > 10) std::cout << fmt::format("    ... and {} more\n", read.repairs.size() - 10);
   std::cout << std::flush;
@@ -47,8 +49,8 @@ void print_mesh_summary(const MeshSequence& result, bool wall) {
   const auto ed = std::max_element(volumes.begin(), volumes.end());
   const auto es = std::min_element(volumes.begin(), volumes.end());
   const double edv = *ed, esv = *es;
-  std::cout << fmt::format("  mesh: {} vertices, {} triangles, the same in all {} frames\n", result.positions.front().size(),
-                           result.triangles.size(), result.positions.size());
+  std::cout << fmt::format("  mesh: {} vertices, {} triangles, the same in all {} frames\n",
+                           result.positions.front().size(), result.triangles.size(), result.positions.size());
   std::cout << "  volume per frame (ml):";
   for (double v : volumes) std::cout << fmt::format(" {:.1f}", v / 1000.0);
   std::cout << "\n";
@@ -66,8 +68,8 @@ void print_mesh_summary(const MeshSequence& result, bool wall) {
 // The closing summary of one structure: the mesh, its volumes, where the output is.
 void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, double seconds) {
   print_mesh_summary(result, a.run.label == kLvWall);
-  std::cout << fmt::format("  done in {:.2f} s. Output: {}/mesh.pvd (open in ParaView), frames/, report.json\n", seconds,
-                           a.output);
+  std::cout << fmt::format("  done in {:.2f} s. Output: {}/mesh.pvd (open in ParaView), frames/, report.json\n",
+                           seconds, a.output);
 }
 
 // Several structures (--label all, or --label given more than once): each into OUTDIR/<label>/.
@@ -110,8 +112,8 @@ int run_structures(const ReconstructArgs& a) {
                            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), a.output,
                            a.output);
   if (failed != runs.end()) {
-    std::cerr << fmt::format("contour4d: error: structure {} was not written (exit code {}): {}\n", failed->structure.name,
-                             failed->error_code, failed->error);
+    std::cerr << fmt::format("contour4d: error: structure {} was not written (exit code {}): {}\n",
+                             failed->structure.name, failed->error_code, failed->error);
     return failed->error_code;
   }
   return 0;
@@ -153,24 +155,31 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       "reconstruct", "Contours in, 4D mesh out: one watertight mesh per frame with 1-to-1 vertex correspondence");
   app->footer(
       "Examples:\n"
-      "  contour4d reconstruct ../shared/data/bivme-patient1/guidepoints -o out/lv\n"
+      "  contour4d phantom left-heart -o lh && contour4d reconstruct lh/contours.json -o out/lh   # runs anywhere\n"
+      "  contour4d reconstruct patient1/guidepoints -o out/lv          # a biv-me GPFile folder\n"
       "  contour4d reconstruct contours.json --frame 0 -o out/frame0      # one frame only\n"
-      "  contour4d reconstruct contours.json --label lv-endo --edge 0.8 -o out/lv     # finer mesh (default edge 1 mm)\n"
+      "  contour4d reconstruct contours.json --label lv-endo --edge 0.8 -o out/lv     # finer mesh (default edge 1 "
+      "mm)\n"
       "  contour4d reconstruct contours.json --cap open -o out/cfd        # open ends for CFD inlets\n"
-      "  contour4d reconstruct ../shared/data/sunnybrook-SC-HF-I-1 -o out/sb   # DICOM-referenced contours\n"
+      "  contour4d reconstruct SC-HF-I-1 --label all -o out/sb   # a Sunnybrook folder: endo, epi and the wall\n"
       "  contour4d reconstruct seg.nii.gz --labels acdc --label lv -o out/lv  # label masks (nnU-Net, Slicer)\n"
       "  contour4d reconstruct seg.nii.gz --labels acdc --label myo --method carry --cycle-ms 800 -o out/myo\n"
       "                                      # a myocardial wall, every frame on its own; frames 800/N ms apart\n"
-      "  contour4d reconstruct contours.json --strict -o out/lv      # refuse flawed contours instead of repairing them\n"
-      "INPUT is a contour JSON file, a biv-me GPFile folder, a Sunnybrook folder or label image(s). Outputs: OUTDIR/mesh.pvd (open in ParaView),\n"
-      "OUTDIR/frames/frame_NNN.vtp (.obj with --format vtp,obj), OUTDIR/report.json (summary first: volume curve, ED/ES\n"
+      "  contour4d reconstruct contours.json --strict -o out/lv      # refuse flawed contours instead of repairing "
+      "them\n"
+      "INPUT is a contour JSON file, a biv-me GPFile folder, a Sunnybrook folder or label image(s). Outputs: "
+      "OUTDIR/mesh.pvd (open in ParaView),\n"
+      "OUTDIR/frames/frame_NNN.vtp (.obj with --format vtp,obj), OUTDIR/report.json (summary first: volume curve, "
+      "ED/ES\n"
       "frames, EDV/ESV/EF). Coordinates in mm, in the input's patient space (LPS for DICOM-derived inputs).\n"
       "Every frame is checked before anything is written; a frame that fails exits with code 26, naming it.");
   // The options a user needs first; the rest under "Advanced" (baselines of the papers, tuning, debugging).
   app->add_option("INPUT", args->input, "contour JSON file, GPFile folder, Sunnybrook folder or label image(s)")
       ->required();
   app->add_option("-o,--output", args->output, "output folder (replaced atomically when complete)")->required();
-  app->add_option("--edge", args->run.edge, "target edge length in mm")->capture_default_str()->check(CLI::Range(0.05, 50.0));
+  app->add_option("--edge", args->run.edge, "target edge length in mm")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 50.0));
   app->add_option("--cap", args->run.cap, "end caps: rounded, flat or open")
       ->capture_default_str()
       ->check(CLI::IsMember({"rounded", "flat", "open"}));

@@ -61,8 +61,9 @@ int run_render(const RenderArgs& a) {
   if (std::sscanf(a.size.c_str(), "%dx%d", &opt.width, &opt.height) != 2)
     throw InvalidInput(ErrorCode::Usage, {}, "bad --size '" + a.size + "'", "use WIDTHxHEIGHT, e.g. 800x600");
   opt.perspective = a.perspective;
-  opt.interpolation = a.interp == "catmull-rom" ? TimeInterpolation::CatmullRomPeriodic
-                                                : (a.interp == "step" ? TimeInterpolation::Step : TimeInterpolation::Linear);
+  opt.interpolation = a.interp == "catmull-rom"
+                          ? TimeInterpolation::CatmullRomPeriodic
+                          : (a.interp == "step" ? TimeInterpolation::Step : TimeInterpolation::Linear);
   OffscreenRenderer r(opt);
   std::cout << "renderer: " << r.description() << "\n";
   const std::size_t nf = seq.positions.size();
@@ -112,23 +113,30 @@ int run_render(const RenderArgs& a) {
     for (std::size_t i = 0; i < count; ++i) {
       st.t_ms = a.frames > 0 ? seq.times_ms.front() + period * static_cast<double>(i) / static_cast<double>(count)
                              : seq.times_ms[i];
-      if (a.classical) r.draw_classical(i % nf); else r.draw_patches(st);
+      if (a.classical)
+        r.draw_classical(i % nf);
+      else
+        r.draw_patches(st);
       write_png(out.path(fmt::format("frame_{:03d}.png", i)), r.read_image());
     }
     out.commit();
-    std::cout << fmt::format("wrote {} tessellated frames ({}x{}, base {} triangles, level {}) to {}\n", count, opt.width,
-                             opt.height, pm.triangles.size(), a.level, a.output);
+    std::cout << fmt::format("wrote {} tessellated frames ({}x{}, base {} triangles, level {}) to {}\n", count,
+                             opt.width, opt.height, pm.triangles.size(), a.level, a.output);
     return 0;
   }
-  if (a.classical) r.load_classical(seq); else r.load_compact(model);
+  if (a.classical)
+    r.load_classical(seq);
+  else
+    r.load_compact(model);
   OutputDir out(a.output);
   const double period = cycle_period(seq.times_ms);
   for (std::size_t i = 0; i < count; ++i) {
     if (a.classical) {
       r.draw_classical(i % nf);
     } else {
-      const double t = a.frames > 0 ? seq.times_ms.front() + period * static_cast<double>(i) / static_cast<double>(count)
-                                    : seq.times_ms[i];
+      const double t = a.frames > 0
+                           ? seq.times_ms.front() + period * static_cast<double>(i) / static_cast<double>(count)
+                           : seq.times_ms[i];
       r.draw_compact(t);
     }
     write_png(out.path(fmt::format("frame_{:03d}.png", i)), r.read_image());
@@ -156,20 +164,28 @@ void add_render_command(CLI::App& root, std::vector<Command>& commands) {
   auto args = std::make_shared<RenderArgs>();
   app->add_option("INPUT", args->input, "output folder of a reconstruction or a model.c4d")->required();
   app->add_option("-o,--output", args->output, "folder for the PNG frames");
-  app->add_option("--frames", args->frames, "number of images evenly over the cycle (0: one per frame)")->default_val(0);
+  app->add_option("--frames", args->frames, "number of images evenly over the cycle (0: one per frame)")
+      ->default_val(0);
   app->add_option("--size", args->size, "image size WIDTHxHEIGHT")->default_val("640x480");
-  app->add_option("--interp", args->interp, "interpolation between frames")->check(CLI::IsMember({"linear", "catmull-rom", "step"}))->default_val("linear");
+  app->add_option("--interp", args->interp, "interpolation between frames")
+      ->check(CLI::IsMember({"linear", "catmull-rom", "step"}))
+      ->default_val("linear");
   app->add_flag("--classical", args->classical,
                 "upload each frame's mesh instead of the compact GPU path (with --tessellated: the patches "
                 "tessellated on the CPU)");
   app->add_flag("--perspective", args->perspective, "perspective camera (default orthographic)");
   app->add_flag("--tessellated", args->tessellated,
                 "draw through the viewer's tessellation shaders (base mesh + displacement maps, PN patches)");
-  app->add_option("--level", args->level, "tessellation level with --tessellated (1..64)")->default_val(6)->check(CLI::Range(1, 64));
-  app->add_option("--grid", args->grid, "displacement map lattice steps per base edge")->default_val(8)->check(CLI::Range(1, 64));
+  app->add_option("--level", args->level, "tessellation level with --tessellated (1..64)")
+      ->default_val(6)
+      ->check(CLI::Range(1, 64));
+  app->add_option("--grid", args->grid, "displacement map lattice steps per base edge")
+      ->default_val(8)
+      ->check(CLI::Range(1, 64));
   app->add_option("--base-triangles", args->base_triangles, "triangles of the coarse base mesh")->default_val(2000);
   app->add_flag("--wireframe", args->wireframe, "with --tessellated: draw the tessellated edges");
-  app->add_option("--bench", args->bench, "draw N frames with each path and report ms and bytes per frame")->default_val(0);
+  app->add_option("--bench", args->bench, "draw N frames with each path and report ms and bytes per frame")
+      ->default_val(0);
   commands.push_back({app, [args] { return run_render(*args); }});
 }
 

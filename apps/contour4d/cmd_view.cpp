@@ -53,10 +53,11 @@ int run_view(const ViewArgs& a) {
   po.grid = a.grid;
   po.base_triangles = a.base_triangles;
   const PatchMesh pm = build_patch_mesh(seq, po);
-  std::cout << fmt::format("base mesh {} triangles ({} fine), {} frames, displacement maps {}x{} lattice, "
-                           "max |d| {:.2f} mm, {} samples missed the surface\n",
-                           pm.triangles.size(), seq.triangles.size(), pm.positions.size(), a.grid, a.grid,
-                           pm.max_abs_displacement, pm.missed);
+  std::cout << fmt::format(
+      "base mesh {} triangles ({} fine), {} frames, displacement maps {}x{} lattice, "
+      "max |d| {:.2f} mm, {} samples missed the surface\n",
+      pm.triangles.size(), seq.triangles.size(), pm.positions.size(), a.grid, a.grid, pm.max_abs_displacement,
+      pm.missed);
   // Input contours for the section view: --contours, else contours.json beside or above the input.
   std::unique_ptr<Sequence> contours;
   std::filesystem::path cpath = a.contours;
@@ -134,21 +135,31 @@ void add_view_command(CLI::App& root, std::vector<Command>& commands) {
       "  contour4d view out --snapshot view.png --wireframe --level 4   # no display needed\n");
   auto args = std::make_shared<ViewArgs>();
   app->add_option("INPUT", args->input, "output folder of a reconstruction or a model.c4d")->required();
-  app->add_option("--contours", args->contours, "input contours for the section view (default: contours.json beside INPUT)");
+  app->add_option("--contours", args->contours,
+                  "input contours for the section view (default: contours.json beside INPUT)");
   app->add_option("--snapshot", args->snapshot, "draw one image offscreen to this PNG and exit (no window)");
   app->add_option("--size", args->size, "window or image size WIDTHxHEIGHT")->default_val("1280x800");
-  app->add_option("--level", args->level, "tessellation level (1..64; about 1.5·level² triangles per base triangle)")->default_val(6)->check(CLI::Range(1, 64));
-  app->add_option("--grid", args->grid, "displacement map lattice steps per base edge")->default_val(8)->check(CLI::Range(1, 64));
+  app->add_option("--level", args->level, "tessellation level (1..64; about 1.5·level² triangles per base triangle)")
+      ->default_val(6)
+      ->check(CLI::Range(1, 64));
+  app->add_option("--grid", args->grid, "displacement map lattice steps per base edge")
+      ->default_val(8)
+      ->check(CLI::Range(1, 64));
   app->add_option("--base-triangles", args->base_triangles, "triangles of the coarse base mesh")->default_val(2000);
-  app->add_option("--interp", args->interp, "interpolation between frames")->check(CLI::IsMember({"linear", "catmull-rom"}))->default_val("linear");
+  app->add_option("--interp", args->interp, "interpolation between frames")
+      ->check(CLI::IsMember({"linear", "catmull-rom"}))
+      ->default_val("linear");
   app->add_flag("--wireframe", args->wireframe, "start with the tessellated edges drawn");
   app->add_flag("--section", args->section, "start with the section plane on");
-  app->add_option("--section-slice", args->section_slice, "slice (0-based, sorted) of the section plane; -1: middle")->default_val(-1);
+  app->add_option("--section-slice", args->section_slice, "slice (0-based, sorted) of the section plane; -1: middle")
+      ->default_val(-1);
   app->add_flag("--no-maps", args->no_maps, "start without the displacement maps (smooth PN patches)");
   app->add_option("--time", args->time_ms, "start time after the first frame (ms)")->default_val(0.0);
   app->add_option("--yaw", args->yaw, "camera azimuth about +z (degrees)")->default_val(-65.0);
   app->add_option("--pitch", args->pitch, "camera elevation (degrees)")->default_val(20.0);
-  app->add_option("--zoom", args->zoom, "camera distance factor (< 1: closer)")->default_val(1.0)->check(CLI::PositiveNumber);
+  app->add_option("--zoom", args->zoom, "camera distance factor (< 1: closer)")
+      ->default_val(1.0)
+      ->check(CLI::PositiveNumber);
   app->add_option("--seconds", args->seconds, "close the window after N seconds (0: never)")->default_val(0);
   commands.push_back({app, [args] { return run_view(*args); }});
 }

@@ -14,18 +14,22 @@ inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::s
   app->add_option("--type", o.contour_types,
                   "GPFile contour types to keep (repeatable; default SAX_LV_ENDOCARDIAL), e.g. SAX_LV_EPICARDIAL");
   if (labels)
-    app->add_option("--label", *labels,
-                    "structure: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name (lv); "
-                    "repeatable, or all: every structure (and lv-wall, the myocardium, from lv-endo inside lv-epi), "
-                    "each into OUTDIR/<label>/");
+    app->add_option(
+        "--label", *labels,
+        "structure: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name (lv); "
+        "repeatable, or all: every structure (and lv-wall, the myocardium, from lv-endo inside lv-epi), "
+        "each into OUTDIR/<label>/");
   else
-    app->add_option("--label", o.label,
-                    "structure to keep: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name "
-                    "(lv); all: every structure (Sunnybrook folders give lv-endo unless asked)");
-  app->add_option("--labels", o.label_preset, "label-image preset naming the labels: acdc (RV=1, MYO=2, LV=3) or mnms (LV=1, MYO=2, RV=3)")
+    app->add_option(
+        "--label", o.label,
+        "structure to keep: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name "
+        "(lv); all: every structure (Sunnybrook folders give lv-endo unless asked)");
+  app->add_option("--labels", o.label_preset,
+                  "label-image preset naming the labels: acdc (RV=1, MYO=2, LV=3) or mnms (LV=1, MYO=2, RV=3)")
       ->check(CLI::IsMember({"acdc", "mnms"}));
-  app->add_option("--slice-axis", o.slice_axis, "label images: voxel axis 0, 1 or 2 along which slices are stacked "
-                                                "(default: the axis with the largest spacing)")
+  app->add_option("--slice-axis", o.slice_axis,
+                  "label images: voxel axis 0, 1 or 2 along which slices are stacked "
+                  "(default: the axis with the largest spacing)")
       ->check(CLI::Range(0, 2));
   app->add_option("--space", o.space, "output space of image/DICOM inputs: lps (DICOM patient space) or ras")
       ->capture_default_str()
@@ -34,7 +38,8 @@ inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::s
                   "time between frames in ms, for inputs without frame times (GPFile, label images); DICOM trigger "
                   "times win where present")
       ->check(CLI::PositiveNumber);
-  app->add_option("--cycle-ms", o.cycle_ms, "the same given as the cardiac cycle length in ms (frames spread evenly over it)")
+  app->add_option("--cycle-ms", o.cycle_ms,
+                  "the same given as the cardiac cycle length in ms (frames spread evenly over it)")
       ->check(CLI::PositiveNumber);
   app->add_flag("--strict", o.strict,
                 "refuse flawed contours (open arcs, loops, spikes, too few points, two slice ids on one plane) with "

@@ -16,7 +16,8 @@ class ProgressBar {
   void update(const std::string& stage, int done, int total) {
     if (!enabled_ || total <= 0) return;
     const int width = 30, filled = done * width / total;
-    std::fprintf(stderr, "\r%-10s [%s%s] %d/%d", stage.c_str(), std::string(static_cast<std::size_t>(filled), '#').c_str(),
+    std::fprintf(stderr, "\r%-10s [%s%s] %d/%d", stage.c_str(),
+                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
                  std::string(static_cast<std::size_t>(width - filled), ' ').c_str(), done, total);
     std::fflush(stderr);
     drawn_ = true;

@@ -106,7 +106,8 @@ std::vector<Connection> intra_frame_connections(const Sequence& seq, int frame, 
         if (sim > 0.0) edges.push_back({node_of[s][a], node_of[s + 1][b], sim});
       }
   std::vector<Connection> out;
-  for (int k : threshold_then_kruskal(static_cast<int>(nodes.size()), edges, options.threshold, options.complete_tree)) {
+  for (int k :
+       threshold_then_kruskal(static_cast<int>(nodes.size()), edges, options.threshold, options.complete_tree)) {
     const Node& na = nodes[edges[k].i];
     const Node& nb = nodes[edges[k].j];
     out.push_back({frame, f.slices[na.slice].id, na.contour, frame, f.slices[nb.slice].id, nb.contour, edges[k].weight,
@@ -148,10 +149,12 @@ std::vector<Connection> inter_frame_connections(const Sequence& seq, const Conne
           const double sim = contour_similarity(polys[a], polys[b]);
           if (sim > 0.0) edges.push_back({a, b, sim});
         }
-    for (int k : threshold_then_kruskal(static_cast<int>(nodes.size()), edges, options.threshold, options.complete_tree)) {
+    for (int k :
+         threshold_then_kruskal(static_cast<int>(nodes.size()), edges, options.threshold, options.complete_tree)) {
       const Node& na = nodes[edges[k].i];
       const Node& nb = nodes[edges[k].j];
-      out.push_back({na.frame, id, na.contour, nb.frame, id, nb.contour, edges[k].weight, edges[k].weight > options.threshold});
+      out.push_back(
+          {na.frame, id, na.contour, nb.frame, id, nb.contour, edges[k].weight, edges[k].weight > options.threshold});
     }
   }
   std::sort(out.begin(), out.end(), [](const Connection& x, const Connection& y) {

@@ -84,8 +84,10 @@ struct EdgeBands {
       for (std::size_t j = 0; j < m; ++j) {
         const double lo = std::min(p[j].y, p[(j + 1) % m].y), hi = std::max(p[j].y, p[(j + 1) % m].y);
         for (std::size_t k = band(lo), e = band(hi); k <= e; ++k) {
-          if (pass == 0) ++start[k + 1];
-          else items[fill[k]++] = static_cast<std::uint32_t>(j);
+          if (pass == 0)
+            ++start[k + 1];
+          else
+            items[fill[k]++] = static_cast<std::uint32_t>(j);
         }
       }
     }

@@ -12,7 +12,8 @@ namespace c4d::detail {
 #if defined(__AVX__)
 bool avx_available() { return __builtin_cpu_supports("avx"); }
 
-void ldlt_rows_below_avx(double* y, const int* rows, int below, const double* const* columns, const double* yv, int run) {
+void ldlt_rows_below_avx(double* y, const int* rows, int below, const double* const* columns, const double* yv,
+                         int run) {
   int q = 0;
   // Sixteen rows at a time: four independent chains of four-lane operations.
   for (; q + 16 <= below; q += 16) {
@@ -39,7 +40,8 @@ void ldlt_rows_below_avx(double* y, const int* rows, int below, const double* co
   for (; q + 4 <= below; q += 4) {
     const int* w = rows + q;
     __m256d a = _mm256_set_pd(y[w[3]], y[w[2]], y[w[1]], y[w[0]]);
-    for (int t = 0; t < run; ++t) a = _mm256_sub_pd(a, _mm256_mul_pd(_mm256_loadu_pd(columns[t] + q), _mm256_set1_pd(yv[t])));
+    for (int t = 0; t < run; ++t)
+      a = _mm256_sub_pd(a, _mm256_mul_pd(_mm256_loadu_pd(columns[t] + q), _mm256_set1_pd(yv[t])));
     alignas(32) double out[4];
     _mm256_store_pd(out, a);
     for (int l = 0; l < 4; ++l) y[w[l]] = out[l];
@@ -89,7 +91,8 @@ void ldlt_substitute3_avx(const int* outer, const int* counts, const int* inner,
       below(i, k0, k1);
       __m256d t = _mm256_loadu_pd(Y + 4 * i);
       for (long k = k0; k < k1; ++k)
-        t = _mm256_sub_pd(t, _mm256_mul_pd(_mm256_set1_pd(value[k]), _mm256_loadu_pd(Y + 4 * static_cast<long>(inner[k]))));
+        t = _mm256_sub_pd(
+            t, _mm256_mul_pd(_mm256_set1_pd(value[k]), _mm256_loadu_pd(Y + 4 * static_cast<long>(inner[k]))));
       _mm256_storeu_pd(Y + 4 * i, t);
     }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace c4d {
 
@@ -62,7 +63,9 @@ bool segments_touch(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 bool is_self_intersecting(const std::vector<Vec2>& p) {
   const std::size_t n = p.size();
   if (n < 4) return false;
-  struct Box { double x0, x1, y0, y1; };
+  struct Box {
+    double x0, x1, y0, y1;
+  };
   std::vector<Box> boxes(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 a = p[i], b = p[(i + 1) % n];
@@ -90,6 +93,26 @@ bool is_self_intersecting(const std::vector<Vec2>& p) {
     }
   }
   return false;
+}
+
+Vec2 closest_on_polyline(Vec2 p, const std::vector<Vec2>& poly, bool closed) {
+  const std::size_t n = poly.size();
+  const std::size_t edges = n < 2 ? n : (closed ? n : n - 1);
+  double best = std::numeric_limits<double>::infinity();
+  Vec2 at = p;
+  for (std::size_t k = 0; k < edges; ++k) {
+    const Vec2 q = closest_on_segment(poly[k], poly[(k + 1) % n], p);
+    if (const double d = norm(p - q); d < best) {
+      best = d;
+      at = q;
+    }
+  }
+  return at;
+}
+
+double polyline_distance(Vec2 p, const std::vector<Vec2>& poly, bool closed) {
+  if (poly.empty()) return std::numeric_limits<double>::infinity();
+  return norm(p - closest_on_polyline(p, poly, closed));
 }
 
 }  // namespace c4d

@@ -52,12 +52,6 @@ double median_spacing(const std::vector<Vec3>& p) {
   return d[d.size() / 2];
 }
 
-double distance_to_polygon(Vec2 q, const std::vector<Vec2>& poly) {
-  double best = 1e300;
-  for (std::size_t i = 0; i < poly.size(); ++i) best = std::min(best, segment_distance(q, poly[i], poly[(i + 1) % poly.size()]));
-  return best;
-}
-
 // Consecutive points closer than `tol` (and a last point on the first) merged; returns how many went.
 std::size_t drop_duplicates(std::vector<Vec3>& p, double tol) {
   const std::size_t before = p.size();
@@ -83,8 +77,8 @@ double drop_spikes(std::vector<Vec3>& p, double deg, std::size_t& removed) {
     const Vec3 a = p[(i + p.size() - 1) % p.size()], b = p[i], c = p[(i + 1) % p.size()];
     const Vec3 u = b - a, v = c - b;
     const double nu = norm(u), nv = norm(v);
-    const bool spike = !previous_removed && nu > 0 && nv > 0 && dot(u, v) / (nu * nv) <= -cos_limit &&
-                       p.size() - (gone + 1) >= 3;
+    const bool spike =
+        !previous_removed && nu > 0 && nv > 0 && dot(u, v) / (nu * nv) <= -cos_limit && p.size() - (gone + 1) >= 3;
     previous_removed = spike;
     if (!spike) {
       out.push_back(b);
@@ -192,7 +186,8 @@ bool repair_one(RawContour& rc, const RepairOptions& opt, std::vector<ContourRep
   if (spikes > 0)
     log.push_back(repair_of(rc, "spike", fmt::format("{} spike or doubled-back point(s) removed", spikes), moved));
   if (p.size() < 3) {
-    log.push_back(repair_of(rc, "too-few-points", fmt::format("dropped: {} distinct point(s), a contour needs 3", p.size()), 0.0));
+    log.push_back(repair_of(rc, "too-few-points",
+                            fmt::format("dropped: {} distinct point(s), a contour needs 3", p.size()), 0.0));
     return false;
   }
   const Flat flat = flatten(p);
@@ -218,11 +213,13 @@ bool repair_one(RawContour& rc, const RepairOptions& opt, std::vector<ContourRep
       return true;
     }
     if (!is_self_intersecting(flat.p2)) {
-      log.push_back(repair_of(rc, "open-arc-closed", fmt::format("an open arc: closed along its {:.1f} mm gap", gap), 0.0));
+      log.push_back(
+          repair_of(rc, "open-arc-closed", fmt::format("an open arc: closed along its {:.1f} mm gap", gap), 0.0));
       return true;
     }
     log.push_back(repair_of(rc, "open-arc-dropped",
-                            fmt::format("dropped: an open arc (closing gap {:.1f} mm) whose closing crosses it", gap), 0.0));
+                            fmt::format("dropped: an open arc (closing gap {:.1f} mm) whose closing crosses it", gap),
+                            0.0));
     return false;
   }
   if (!is_self_intersecting(flat.p2)) return true;
@@ -236,11 +233,12 @@ bool repair_one(RawContour& rc, const RepairOptions& opt, std::vector<ContourRep
     return false;
   }
   double loop_moved = 0;
-  for (const Vec2& q : flat.p2) loop_moved = std::max(loop_moved, distance_to_polygon(q, best->p2));
-  log.push_back(repair_of(rc, "loop-removed",
-                          fmt::format("crossed itself: its largest simple loop kept ({} of {} points, {} loop(s) removed)",
-                                      best->p3.size(), p.size(), loops.size() - 1),
-                          loop_moved));
+  for (const Vec2& q : flat.p2) loop_moved = std::max(loop_moved, polyline_distance(q, best->p2));
+  log.push_back(
+      repair_of(rc, "loop-removed",
+                fmt::format("crossed itself: its largest simple loop kept ({} of {} points, {} loop(s) removed)",
+                            best->p3.size(), p.size(), loops.size() - 1),
+                loop_moved));
   p = best->p3;
   return true;
 }
@@ -300,8 +298,9 @@ void merge_planes(std::vector<RawContour>& contours, const RepairOptions& opt, s
     }
     const int from = rc.contour.slice, to = it->second;
     if (kept.count({rc.frame, to, rc.contour.label})) {
-      log.push_back({rc.frame, from, rc.index, "slices-merged",
-                     fmt::format("slice {} lies on the plane of slice {}: dropped, slice {}'s contour kept", from, to, to), 0.0});
+      log.push_back(
+          {rc.frame, from, rc.index, "slices-merged",
+           fmt::format("slice {} lies on the plane of slice {}: dropped, slice {}'s contour kept", from, to, to), 0.0});
       continue;
     }
     ++renamed[{from, to}];
@@ -310,8 +309,8 @@ void merge_planes(std::vector<RawContour>& contours, const RepairOptions& opt, s
   }
   for (const auto& [ids, count] : renamed)
     log.push_back({-1, ids.second, -1, "slices-merged",
-                   fmt::format("slice {} lies on the plane of slice {}: merged into it ({} contour(s) moved)", ids.first,
-                               ids.second, count),
+                   fmt::format("slice {} lies on the plane of slice {}: merged into it ({} contour(s) moved)",
+                               ids.first, ids.second, count),
                    0.0});
   contours = std::move(out);
 }

@@ -16,10 +16,22 @@ std::string Location::format() const {
     first = true;
     if (line >= 0 || frame >= 0 || slice >= 0 || contour >= 0) os << ": ";
   }
-  if (line >= 0) { sep(); os << "line " << line; }
-  if (frame >= 0) { sep(); os << "frame " << frame; }
-  if (slice >= 0) { sep(); os << "slice " << slice; }
-  if (contour >= 0) { sep(); os << "contour " << contour; }
+  if (line >= 0) {
+    sep();
+    os << "line " << line;
+  }
+  if (frame >= 0) {
+    sep();
+    os << "frame " << frame;
+  }
+  if (slice >= 0) {
+    sep();
+    os << "slice " << slice;
+  }
+  if (contour >= 0) {
+    sep();
+    os << "contour " << contour;
+  }
   return os.str();
 }
 

@@ -20,7 +20,8 @@ std::uint64_t ordered_bits(double d) {
 
 }  // namespace
 
-void sort_pairs(std::vector<std::pair<double, std::uint64_t>>& items, std::vector<std::pair<double, std::uint64_t>>& spare) {
+void sort_pairs(std::vector<std::pair<double, std::uint64_t>>& items,
+                std::vector<std::pair<double, std::uint64_t>>& spare) {
   const std::size_t n = items.size();
   if (n < 512 || n > UINT32_MAX) {  // short lists: std::sort is as fast
     std::sort(items.begin(), items.end());
@@ -53,7 +54,8 @@ void sort_pairs(std::vector<std::pair<double, std::uint64_t>>& items, std::vecto
   for (std::size_t i = 0; i < n;) {
     std::size_t j = i + 1;
     while (j < n && bits[j] == bits[i]) ++j;
-    if (j - i > 1) std::sort(items.begin() + static_cast<std::ptrdiff_t>(i), items.begin() + static_cast<std::ptrdiff_t>(j));
+    if (j - i > 1)
+      std::sort(items.begin() + static_cast<std::ptrdiff_t>(i), items.begin() + static_cast<std::ptrdiff_t>(j));
     i = j;
   }
 }

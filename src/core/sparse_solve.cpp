@@ -200,14 +200,16 @@ struct UpLooking {
     }
     chain.assign(static_cast<std::size_t>(n), 0);
     for (int i = 0; i + 1 < n; ++i)
-      chain[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(i)] == i + 1 &&
-                                           count[static_cast<std::size_t>(i)] == count[static_cast<std::size_t>(i) + 1] + 1;
+      chain[static_cast<std::size_t>(i)] =
+          parent[static_cast<std::size_t>(i)] == i + 1 &&
+          count[static_cast<std::size_t>(i)] == count[static_cast<std::size_t>(i) + 1] + 1;
   }
 
   // Numeric factorisation into l (strictly lower, compressed) and d; false at a zero pivot (as Eigen,
   // which stops there).
   // lanes: SparseLdlt's; 1 runs Eigen's loop for every column.
-  bool factorize(const Eigen::SparseMatrix<double>& ap, Eigen::SparseMatrix<double>& l, Eigen::VectorXd& d, int lanes) const {
+  bool factorize(const Eigen::SparseMatrix<double>& ap, Eigen::SparseMatrix<double>& l, Eigen::VectorXd& d,
+                 int lanes) const {
     const auto n = static_cast<int>(ap.cols());
     l.resize(n, n);
     int* lp = l.outerIndexPtr();
@@ -219,7 +221,8 @@ struct UpLooking {
     d.resize(n);
     double* dk = d.data();
     std::vector<double> y(static_cast<std::size_t>(n), 0.0), yv;
-    std::vector<int> pattern(static_cast<std::size_t>(n)), tags(static_cast<std::size_t>(n), 0), nz(static_cast<std::size_t>(n), 0);
+    std::vector<int> pattern(static_cast<std::size_t>(n)), tags(static_cast<std::size_t>(n), 0),
+        nz(static_cast<std::size_t>(n), 0);
     std::vector<const double*> columns, inner;
     constexpr int kBlock = 16;
     std::vector<int> block_rows(static_cast<std::size_t>(kBlock));
@@ -288,7 +291,8 @@ struct UpLooking {
             const double lki = yi / dk[i];
             const int inside = i1 - i;
             const int base = lp[i];
-            for (int q = 0; q < b1 - 1 - t; ++q) y[static_cast<std::size_t>(i) + 1 + static_cast<std::size_t>(q)] -= lx[base + q] * yi;
+            for (int q = 0; q < b1 - 1 - t; ++q)
+              y[static_cast<std::size_t>(i) + 1 + static_cast<std::size_t>(q)] -= lx[base + q] * yi;
             diag -= lki * yi;
             const int p2 = base + nz[static_cast<std::size_t>(i)];
             li[p2] = k;

@@ -62,7 +62,8 @@ ContourInfo measure(const RawContour& rc, const std::string& source, const Stack
   const std::vector<Vec3>& in = rc.contour.points;
   for (std::size_t i = 0; i < in.size(); ++i)
     if (!is_finite(in[i]))
-      throw InvalidInput(ErrorCode::NonFinite, where, "point " + std::to_string(i) + " has a NaN or infinite coordinate",
+      throw InvalidInput(ErrorCode::NonFinite, where,
+                         "point " + std::to_string(i) + " has a NaN or infinite coordinate",
                          "coordinates must be finite numbers (mm)");
   ContourInfo info;
   info.points.reserve(in.size());
@@ -71,9 +72,8 @@ ContourInfo measure(const RawContour& rc, const std::string& source, const Stack
   while (info.points.size() > 1 && info.points.back() == info.points.front()) info.points.pop_back();
 
   std::vector<Vec3> distinct = info.points;
-  std::sort(distinct.begin(), distinct.end(), [](Vec3 a, Vec3 b) {
-    return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
-  });
+  std::sort(distinct.begin(), distinct.end(),
+            [](Vec3 a, Vec3 b) { return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z); });
   const auto n_distinct = std::unique(distinct.begin(), distinct.end()) - distinct.begin();
   if (n_distinct < 3)
     throw InvalidInput(ErrorCode::DegenerateContour, where,
@@ -153,13 +153,16 @@ void check_simple(const std::vector<RawContour>& contours, const std::vector<Con
 struct Range {
   double lo = std::numeric_limits<double>::infinity();
   double hi = -std::numeric_limits<double>::infinity();
-  void add(double d) { lo = std::min(lo, d); hi = std::max(hi, d); }
+  void add(double d) {
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
   double mid() const { return 0.5 * (lo + hi); }
 };
 
 //! The offsets of each slice's points, over all frames and per frame.
 struct SliceRanges {
-  std::map<int, Range> slice_range;                   // over all frames
+  std::map<int, Range> slice_range;                  // over all frames
   std::map<std::pair<int, int>, Range> frame_range;  // (slice, frame)
 };
 
@@ -214,8 +217,14 @@ void check_slice_planes(const std::vector<RawContour>& contours, const std::vect
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
       for (const auto& [key, fr] : ranges.frame_range) {
         if (key.first != id) continue;
-        if (fr.mid() < lo) { lo = fr.mid(); f_lo = key.second; }
-        if (fr.mid() > hi) { hi = fr.mid(); f_hi = key.second; }
+        if (fr.mid() < lo) {
+          lo = fr.mid();
+          f_lo = key.second;
+        }
+        if (fr.mid() > hi) {
+          hi = fr.mid();
+          f_hi = key.second;
+        }
       }
       Location where = file_loc;
       where.slice = id;
@@ -232,8 +241,8 @@ void check_slice_planes(const std::vector<RawContour>& contours, const std::vect
 // 6. Sign of the normal: slice offsets increase with slice id (the first and last ids decide);
 //    flips `normal` and the ranges when they do not. Returns (offset, id) sorted by offset and
 //    throws where two slice ids lie on one plane.
-std::vector<std::pair<double, int>> order_slices(Vec3& normal, std::map<int, Range>& slice_range, const Location& file_loc,
-                                                 const StackOptions& options) {
+std::vector<std::pair<double, int>> order_slices(Vec3& normal, std::map<int, Range>& slice_range,
+                                                 const Location& file_loc, const StackOptions& options) {
   if (slice_range.size() >= 2 && slice_range.rbegin()->second.mid() < slice_range.begin()->second.mid()) {
     normal = -normal;
     for (auto& [id, r] : slice_range) r = {-r.hi, -r.lo};
@@ -246,9 +255,9 @@ std::vector<std::pair<double, int>> order_slices(Vec3& normal, std::map<int, Ran
       Location where = file_loc;
       where.slice = order[k].second;
       throw InvalidInput(ErrorCode::DuplicatePlane, where,
-                         "slice ids " + std::to_string(order[k - 1].second) + " and " + std::to_string(order[k].second) +
-                             " lie on one plane (offsets " + mm(order[k - 1].first) + " and " + mm(order[k].first) +
-                             ", closer than " + mm(options.min_plane_gap) + ")",
+                         "slice ids " + std::to_string(order[k - 1].second) + " and " +
+                             std::to_string(order[k].second) + " lie on one plane (offsets " + mm(order[k - 1].first) +
+                             " and " + mm(order[k].first) + ", closer than " + mm(options.min_plane_gap) + ")",
                          "give contours of one plane the same slice id");
     }
   }
@@ -317,7 +326,8 @@ Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count
   Location file_loc;
   file_loc.file = source;
   if (frame_count <= 0)
-    throw InvalidInput(ErrorCode::EmptyFrame, file_loc, "the input has no frames", "give at least one frame of contours");
+    throw InvalidInput(ErrorCode::EmptyFrame, file_loc, "the input has no frames",
+                       "give at least one frame of contours");
   if (!times_ms.empty() && times_ms.size() != static_cast<std::size_t>(frame_count))
     throw InvalidInput(ErrorCode::Internal, file_loc, "build_sequence: times_ms does not match frame_count");
   for (const RawContour& rc : contours)
@@ -360,7 +370,8 @@ Sequence select_label(const Sequence& seq, const std::string& label) {
   where.file = seq.source;
   if (!any) {
     std::string present;
-    for (const std::string& l : labels(seq)) present += (present.empty() ? "" : ", ") + (l.empty() ? "(no label)" : "\"" + l + "\"");
+    for (const std::string& l : labels(seq))
+      present += (present.empty() ? "" : ", ") + (l.empty() ? "(no label)" : "\"" + l + "\"");
     throw InvalidInput(ErrorCode::UnknownLabel, where, "no contour has the label \"" + label + "\"",
                        "labels present: " + present);
   }

@@ -44,8 +44,7 @@ Padded pad(const std::vector<float>& field, int width, int height, float level) 
 
 }  // namespace
 
-std::vector<std::vector<Vec2>> marching_squares(const std::vector<float>& field, int width, int height,
-                                                float level) {
+std::vector<std::vector<Vec2>> marching_squares(const std::vector<float>& field, int width, int height, float level) {
   std::vector<std::vector<Vec2>> chains;
   if (width <= 0 || height <= 0 || field.size() < static_cast<std::size_t>(width) * height) return chains;
   const Padded p = pad(field, width, height, level);
@@ -358,21 +357,24 @@ std::vector<float> gaussian_blur(const std::vector<float>& field, int width, int
   const int r = static_cast<int>(std::ceil(3.0 * sigma));
   std::vector<float> k(static_cast<std::size_t>(2 * r + 1));
   double sum = 0.0;
-  for (int i = -r; i <= r; ++i) sum += k[static_cast<std::size_t>(i + r)] = static_cast<float>(std::exp(-0.5 * i * i / (sigma * sigma)));
+  for (int i = -r; i <= r; ++i)
+    sum += k[static_cast<std::size_t>(i + r)] = static_cast<float>(std::exp(-0.5 * i * i / (sigma * sigma)));
   for (float& v : k) v = static_cast<float>(v / sum);
   std::vector<float> tmp(field.size(), 0.0f), out(field.size(), 0.0f);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       float acc = 0.0f;
       for (int i = std::max(-r, -x); i <= std::min(r, width - 1 - x); ++i)
-        acc += k[static_cast<std::size_t>(i + r)] * field[static_cast<std::size_t>(x + i) + static_cast<std::size_t>(width) * y];
+        acc += k[static_cast<std::size_t>(i + r)] *
+               field[static_cast<std::size_t>(x + i) + static_cast<std::size_t>(width) * y];
       tmp[static_cast<std::size_t>(x) + static_cast<std::size_t>(width) * y] = acc;
     }
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       float acc = 0.0f;
       for (int i = std::max(-r, -y); i <= std::min(r, height - 1 - y); ++i)
-        acc += k[static_cast<std::size_t>(i + r)] * tmp[static_cast<std::size_t>(x) + static_cast<std::size_t>(width) * (y + i)];
+        acc += k[static_cast<std::size_t>(i + r)] *
+               tmp[static_cast<std::size_t>(x) + static_cast<std::size_t>(width) * (y + i)];
       out[static_cast<std::size_t>(x) + static_cast<std::size_t>(width) * y] = acc;
     }
   return out;

@@ -80,7 +80,9 @@ std::vector<Contour> slice_contours(const LabelVolume& vol, const SliceAxes& g, 
                                  static_cast<std::size_t>(vol.dims[0]) * static_cast<std::size_t>(vol.dims[1])};
   const std::size_t base = stride[g.axis] * static_cast<std::size_t>(k);
   const std::size_t sa = stride[g.ia], sb = stride[g.ib];
-  auto at = [&](int a, int b) { return vol.labels[base + sa * static_cast<std::size_t>(a) + sb * static_cast<std::size_t>(b)]; };
+  auto at = [&](int a, int b) {
+    return vol.labels[base + sa * static_cast<std::size_t>(a) + sb * static_cast<std::size_t>(b)];
+  };
 
   // One pass: bounding box of each requested label in this slice.
   const std::size_t nl = labels.size();
@@ -92,7 +94,8 @@ std::vector<Contour> slice_contours(const LabelVolume& vol, const SliceAxes& g, 
       for (std::size_t l = 0; l < nl; ++l)
         if (labels[l].first == v) {
           auto& bx = box[l];
-          bx[0] = std::min(bx[0], a), bx[1] = std::min(bx[1], b), bx[2] = std::max(bx[2], a), bx[3] = std::max(bx[3], b);
+          bx[0] = std::min(bx[0], a), bx[1] = std::min(bx[1], b), bx[2] = std::max(bx[2], a),
+          bx[3] = std::max(bx[3], b);
         }
     }
 
@@ -109,7 +112,8 @@ std::vector<Contour> slice_contours(const LabelVolume& vol, const SliceAxes& g, 
     for (int y = std::max(0, y0); y < std::min(H, y0 + h); ++y)
       for (int x = std::max(0, x0); x < std::min(W, x0 + w); ++x)
         if (at(x, y) == labels[l].first)
-          mask[static_cast<std::size_t>(x - x0) + static_cast<std::size_t>(w) * static_cast<std::size_t>(y - y0)] = 1.0f;
+          mask[static_cast<std::size_t>(x - x0) + static_cast<std::size_t>(w) * static_cast<std::size_t>(y - y0)] =
+              1.0f;
     if (opt.presmooth_sigma_px > 0.0) mask = gaussian_blur(mask, w, h, opt.presmooth_sigma_px);
     const auto chains = marching_squares(mask, w, h, 0.5f);
     for (const auto& chain : chains) {
@@ -224,7 +228,8 @@ Sequence extract_mask_contours(const LabelSeries& series, const MaskExtractOptio
   const LabelVolume& v0 = series.frames.front();
   int axis = options.slice_axis;
   if (axis < -1 || axis > 2)
-    throw InvalidInput(ErrorCode::Usage, where, "slice axis must be 0, 1 or 2", "omit it to use the axis with the largest spacing");
+    throw InvalidInput(ErrorCode::Usage, where, "slice axis must be 0, 1 or 2",
+                       "omit it to use the axis with the largest spacing");
   if (axis < 0) {
     axis = 2;
     for (int a = 1; a >= 0; --a)

@@ -20,7 +20,7 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kFormatName = "contour4d-contours";
-constexpr int kMaxDepth = 64;           // the schema nests 5 deep; anything far deeper is not ours
+constexpr int kMaxDepth = 64;               // the schema nests 5 deep; anything far deeper is not ours
 constexpr long long kMaxSliceId = 1000000;  // slice ids are small plane numbers, not coordinates
 constexpr const char* kSchemaHint =
     "see docs/formats.md: {\"format\": \"contour4d-contours\", \"version\": 1, \"frames\": [{\"contours\": "
@@ -50,8 +50,8 @@ std::vector<std::vector<int>> contour_lines(std::string_view text) {
   auto value_starts = [&](bool is_object) {
     // Path frames[i].contours[j] is: object(key frames) / array(i) / object(key contours) / array(j).
     if (!is_object || stack.size() != 4) return;
-    if (stack[0].array || stack[0].key != "frames" || !stack[1].array || stack[2].array ||
-        stack[2].key != "contours" || !stack[3].array)
+    if (stack[0].array || stack[0].key != "frames" || !stack[1].array || stack[2].array || stack[2].key != "contours" ||
+        !stack[3].array)
       return;
     const auto f = static_cast<std::size_t>(stack[1].index);
     const auto c = static_cast<std::size_t>(stack[3].index);
@@ -66,8 +66,10 @@ std::vector<std::vector<int>> contour_lines(std::string_view text) {
     } else if (ch == '"') {
       std::string s;
       for (++i; i < text.size() && text[i] != '"'; ++i) {
-        if (text[i] == '\\') ++i;
-        else s += text[i];
+        if (text[i] == '\\')
+          ++i;
+        else
+          s += text[i];
       }
       if (!stack.empty() && !stack.back().array && stack.back().expect_key) {
         stack.back().key = std::move(s);
@@ -79,8 +81,10 @@ std::vector<std::vector<int>> contour_lines(std::string_view text) {
     } else if (ch == '}' || ch == ']') {
       if (!stack.empty()) stack.pop_back();
     } else if (ch == ',' && !stack.empty()) {
-      if (stack.back().array) ++stack.back().index;
-      else stack.back().expect_key = true;
+      if (stack.back().array)
+        ++stack.back().index;
+      else
+        stack.back().expect_key = true;
     }
   }
   return lines;
@@ -99,7 +103,8 @@ double coordinate(const json& j, const Location& where, std::size_t point, int a
   const std::string place = "point " + std::to_string(point) + ", coordinate " + "xyz"[axis];
   if (j.is_number()) {
     const double d = j.get<double>();
-    if (!std::isfinite(d)) fail(ErrorCode::NonFinite, where, place + " is not finite", "coordinates must be finite numbers (mm)");
+    if (!std::isfinite(d))
+      fail(ErrorCode::NonFinite, where, place + " is not finite", "coordinates must be finite numbers (mm)");
     return d;
   }
   if (j.is_null())
@@ -129,9 +134,7 @@ void append_number(std::string& out, double d) {
   out += s;
 }
 
-std::string quoted(const std::string& s) {
-  return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
-}
+std::string quoted(const std::string& s) { return json(s).dump(-1, ' ', false, json::error_handler_t::replace); }
 
 // The parsed document; throws with the line for malformed JSON, too deep nesting and numbers that
 // overflow a double.
@@ -192,8 +195,8 @@ void check_header(const json& doc, const Location& file_loc, Sequence& meta) {
          "upgrade contour4d or write version 1");
   if (const auto it = doc.find("units"); it != doc.end()) {
     if (!it->is_string() || it->get<std::string>() != "mm")
-      fail(ErrorCode::Format, file_loc, "\"units\" is " + it->dump(-1, ' ', false, json::error_handler_t::replace) +
-                                            ", only \"mm\" is supported",
+      fail(ErrorCode::Format, file_loc,
+           "\"units\" is " + it->dump(-1, ' ', false, json::error_handler_t::replace) + ", only \"mm\" is supported",
            "convert coordinates to millimetres");
   }
   if (const auto it = doc.find("space"); it != doc.end()) {
@@ -245,8 +248,8 @@ RawContour read_contour(const json& jc, std::size_t f, std::size_t c, const std:
     const json& jp = (*pit)[p];
     if (!jp.is_array() || jp.size() != 3)
       fail(ErrorCode::Format, cloc, "point " + std::to_string(p) + " is not an [x, y, z] array");
-    rc.contour.points.push_back({coordinate(jp[0], cloc, p, 0), coordinate(jp[1], cloc, p, 1),
-                                 coordinate(jp[2], cloc, p, 2)});
+    rc.contour.points.push_back(
+        {coordinate(jp[0], cloc, p, 0), coordinate(jp[1], cloc, p, 1), coordinate(jp[2], cloc, p, 2)});
   }
   return rc;
 }
@@ -258,7 +261,8 @@ Sequence parse_contours_json(const std::string& text, const std::string& source,
   Location file_loc;
   file_loc.file = source;
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
-    fail(ErrorCode::EmptyFile, file_loc, "file is empty", "write contours with `contour4d extract` or see docs/formats.md");
+    fail(ErrorCode::EmptyFile, file_loc, "file is empty",
+         "write contours with `contour4d extract` or see docs/formats.md");
   const json doc = parse_document(text, file_loc);
   Sequence meta;
   check_header(doc, file_loc, meta);
@@ -278,7 +282,8 @@ Sequence parse_contours_json(const std::string& text, const std::string& source,
     times.push_back(frame_time(fr, f, floc));
     const auto cit = fr.find("contours");
     if (cit == fr.end() || !cit->is_array())
-      fail(ErrorCode::Format, floc, cit == fr.end() ? "frame has no \"contours\" array" : "\"contours\" is not an array");
+      fail(ErrorCode::Format, floc,
+           cit == fr.end() ? "frame has no \"contours\" array" : "\"contours\" is not an array");
     for (std::size_t c = 0; c < cit->size(); ++c) raw.push_back(read_contour((*cit)[c], f, c, lines, floc));
   }
   if (repairs) *repairs = repair_contours(raw);

@@ -97,7 +97,8 @@ bool parse_id(std::string_view s, int& out) {
 
 std::string show(std::string_view s) {
   std::string out;
-  for (char c : s.substr(0, 40)) out += (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) ? '?' : c;
+  for (char c : s.substr(0, 40))
+    out += (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) ? '?' : c;
   return "\"" + out + (s.size() > 40 ? "...\"" : "\"");
 }
 
@@ -139,8 +140,8 @@ std::map<int, GpFileSlice> parse_slice_info(const std::string& text, const std::
     GpFileSlice s;
     const std::size_t id_at = std::min(key("sliceID:"), key("sliceID"));
     if (id_at + 1 >= f.size() || !parse_id(f[id_at + 1], s.id))
-      parse_fail(ErrorCode::Parse, file, n, "no valid \"sliceID:\" field (an integer 0.." + std::to_string(kMaxSliceId) + ")",
-                 kInfoHint);
+      parse_fail(ErrorCode::Parse, file, n,
+                 "no valid \"sliceID:\" field (an integer 0.." + std::to_string(kMaxSliceId) + ")", kInfoHint);
     s.image = std::string(f[0]);
     double ipp[3], iop[6];
     numbers("ImagePositionPatient", 3, ipp);
@@ -182,8 +183,8 @@ std::vector<GuidePoint> parse_frame(const std::string& text, const std::string& 
       if (parse_double(f[0], x) == NumberStatus::NotANumber) {
         // Header: "x y z contour type frameID|sliceID weight time frame"; columns are taken by position.
         if (f.size() < 5)
-          parse_fail(ErrorCode::Parse, file, n, "header has " + std::to_string(f.size()) + " columns, expected at least 5",
-                     kGpHint);
+          parse_fail(ErrorCode::Parse, file, n,
+                     "header has " + std::to_string(f.size()) + " columns, expected at least 5", kGpHint);
         return;
       }
     }
@@ -195,11 +196,12 @@ std::vector<GuidePoint> parse_frame(const std::string& text, const std::string& 
     for (int k = 0; k < 3; ++k) {
       const NumberStatus st = parse_double(f[k], g.p[k]);
       if (st == NumberStatus::NonFinite)
-        parse_fail(ErrorCode::NonFinite, file, n, std::string("coordinate ") + "xyz"[k] + " is not finite (" + show(f[k]) + ")",
+        parse_fail(ErrorCode::NonFinite, file, n,
+                   std::string("coordinate ") + "xyz"[k] + " is not finite (" + show(f[k]) + ")",
                    "coordinates must be finite numbers (mm)");
       if (st != NumberStatus::Ok)
-        parse_fail(ErrorCode::Parse, file, n, std::string("coordinate ") + "xyz"[k] + " " + show(f[k]) + " is not a number",
-                   kGpHint);
+        parse_fail(ErrorCode::Parse, file, n,
+                   std::string("coordinate ") + "xyz"[k] + " " + show(f[k]) + " is not a number", kGpHint);
     }
     if (f[3].empty()) parse_fail(ErrorCode::Parse, file, n, "empty contour type", kGpHint);
     g.type = std::string(f[3]);
@@ -223,7 +225,8 @@ std::string join_ids(const std::vector<int>& ids) {
   const std::string prefix = e.where().format() + ": ";
   if (msg.rfind(prefix, 0) == 0) msg = msg.substr(prefix.size());
   const std::string suffix = e.hint().empty() ? std::string() : ". " + e.hint();
-  if (!suffix.empty() && msg.size() >= suffix.size() && msg.compare(msg.size() - suffix.size(), suffix.size(), suffix) == 0)
+  if (!suffix.empty() && msg.size() >= suffix.size() &&
+      msg.compare(msg.size() - suffix.size(), suffix.size(), suffix) == 0)
     msg.resize(msg.size() - suffix.size());
   Location where = e.where();
   where.file = file;
@@ -352,8 +355,8 @@ void close_epicardium(std::vector<Vec3>& c, const std::vector<const GuidePoint*>
     // The septal wall's RV side completes the LV epicardium (as biv-me fits it): append the
     // septum in the direction that joins the open ends with the shorter gaps.
     const Vec3 s0 = septum->front()->p, s1 = septum->back()->p;
-    const bool reverse = distance(c.back(), s1) + distance(s0, c.front()) <
-                         distance(c.back(), s0) + distance(s1, c.front());
+    const bool reverse =
+        distance(c.back(), s1) + distance(s0, c.front()) < distance(c.back(), s0) + distance(s1, c.front());
     std::vector<Vec3> s;
     for (const GuidePoint* g : *septum) s.push_back(g->p);
     if (reverse) std::reverse(s.begin(), s.end());
@@ -417,8 +420,8 @@ bool frame_contours(const std::vector<GuidePoint>& points, std::size_t f, const 
   where.frame = static_cast<int>(f);
   std::string t;
   for (const std::string& x : types) t += (t.empty() ? "" : ", ") + x;
-  throw InvalidInput(ErrorCode::EmptyFrame, where, "no " + t + " points on the short-axis slices (" +
-                                                       join_ids(slices_used) + ")",
+  throw InvalidInput(ErrorCode::EmptyFrame, where,
+                     "no " + t + " points on the short-axis slices (" + join_ids(slices_used) + ")",
                      "every frame needs at least one contour; choose other contour types with --type");
 }
 
@@ -448,19 +451,23 @@ void add_notes(GpFileResult& result, const std::vector<std::string>& types, cons
   if (!result.slices_skipped.empty()) {
     std::string s;
     for (const GpFileSlice& sl : result.slices)
-      if (!sl.used && count_by_slice.count(sl.id)) s += (s.empty() ? "" : "; ") + std::to_string(sl.id) + ": " + sl.note;
+      if (!sl.used && count_by_slice.count(sl.id))
+        s += (s.empty() ? "" : "; ") + std::to_string(sl.id) + ": " + sl.note;
     result.notes.push_back("slices skipped: " + s);
   }
   std::vector<int> empty_ids;
   for (const GpFileSlice& sl : result.slices)
     if (!count_by_slice.count(sl.id)) empty_ids.push_back(sl.id);
   if (!empty_ids.empty()) result.notes.push_back("slices without the chosen contour types: " + join_ids(empty_ids));
-  result.notes.push_back("frames: " + std::to_string(frame_count) + " files in file-number order; time = frame index x 1 ms "
+  result.notes.push_back("frames: " + std::to_string(frame_count) +
+                         " files in file-number order; time = frame index x 1 ms "
                          "(column 7 of the GPFiles is not used)");
-  if (stats.closed_epi) result.notes.push_back("SAX_LV_EPICARDIAL closed with the SAX_RV_SEPTUM points in " +
-                                               std::to_string(stats.closed_epi) + " contours");
+  if (stats.closed_epi)
+    result.notes.push_back("SAX_LV_EPICARDIAL closed with the SAX_RV_SEPTUM points in " +
+                           std::to_string(stats.closed_epi) + " contours");
   if (stats.straight_epi)
-    result.notes.push_back("SAX_LV_EPICARDIAL is open and had no SAX_RV_SEPTUM points in " + std::to_string(stats.straight_epi) +
+    result.notes.push_back("SAX_LV_EPICARDIAL is open and had no SAX_RV_SEPTUM points in " +
+                           std::to_string(stats.straight_epi) +
                            " contours: closed with a straight edge (septum shape lost there)");
   for (const auto& [type, n] : stats.open_types)
     result.notes.push_back(type + " looks open in " + std::to_string(n) +
@@ -509,7 +516,8 @@ GpFileResult parse_gpfile_texts(const std::vector<std::string>& frames, const st
   std::vector<RawContour> raw;
   ClosingStats stats;
   for (std::size_t f = 0; f < frames.size(); ++f)
-    if (!frame_contours(fp.points[f], f, used, wanted, raw, stats)) throw_empty_frame(files[f], f, types, result.slices_used);
+    if (!frame_contours(fp.points[f], f, used, wanted, raw, stats))
+      throw_empty_frame(files[f], f, types, result.slices_used);
 
   if (options.repair) result.repairs = repair_contours(raw);
   result.sequence = build_in_files(raw, files, source, options.stack);

@@ -129,16 +129,19 @@ void reject_data_file_patterns(const fs::path& file) {
       while (values >> v) {
         const bool digits = !v.empty() && v.size() <= 7 && v.find_first_not_of("0123456789") == std::string::npos;
         if (!digits || std::stol(v) < 1 || ++count > 5)
-          throw IoError(ErrorCode::Format, at_file(file), "invalid image dimensions in the header: '" + line.substr(0, 80) + "'",
+          throw IoError(ErrorCode::Format, at_file(file),
+                        "invalid image dimensions in the header: '" + line.substr(0, 80) + "'",
                         "give a 3D or 4D label image with positive sizes");
       }
       if (count == 0)
-        throw IoError(ErrorCode::Format, at_file(file), "empty image dimensions in the header", "give a 3D or 4D label image");
+        throw IoError(ErrorCode::Format, at_file(file), "empty image dimensions in the header",
+                      "give a 3D or 4D label image");
       continue;
     }
     if (!hit) continue;
     if (line.find('%', sep) != std::string::npos)
-      throw IoError(ErrorCode::Format, at_file(file), "the header names its data files with a printf-style pattern ('%')",
+      throw IoError(ErrorCode::Format, at_file(file),
+                    "the header names its data files with a printf-style pattern ('%')",
                     "contour4d reads one data file per header: write the image as a single .mha, .nrrd or .nii.gz");
     return;  // the data follows this line in single-file formats
   }
@@ -164,7 +167,8 @@ void check_companion(const fs::path& file) {
       return;
     const fs::path data = fs::path(value).is_absolute() ? fs::path(value) : file.parent_path() / value;
     if (!fs::exists(data))
-      throw IoError(ErrorCode::MissingCompanion, at_file(file), "data file '" + data.string() + "' named by the header is missing",
+      throw IoError(ErrorCode::MissingCompanion, at_file(file),
+                    "data file '" + data.string() + "' named by the header is missing",
                     "put the data file beside the header, or give a single-file image (.nii.gz, .nrrd, .mha)");
     return;
   }
@@ -178,8 +182,7 @@ void check_gzip_complete(const fs::path& file) {
   if (!gz) return;
   std::vector<char> scratch(1 << 16);
   int n = 0;
-  while ((n = gzread(gz, scratch.data(), static_cast<unsigned>(scratch.size()))) > 0) {
-  }
+  while ((n = gzread(gz, scratch.data(), static_cast<unsigned>(scratch.size()))) > 0) {}
   const int close = gzclose_r(gz);
   if (n < 0 || close != Z_OK)
     throw IoError(ErrorCode::Parse, at_file(file), "the gzip stream is truncated or corrupt",
@@ -256,10 +259,12 @@ std::vector<fs::path> list_label_images(const fs::path& input) {
     throw IoError(ErrorCode::FileNotFound, at_file(input), "no such file or folder", "check the path");
   }
   if (files.empty())
-    throw IoError(ErrorCode::FileNotFound, at_file(input), "no label image (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd) matches",
+    throw IoError(ErrorCode::FileNotFound, at_file(input),
+                  "no label image (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd) matches",
                   "give a label image, a folder of them, or a pattern such as 'patient001_frame*_gt.nii.gz'");
-  std::sort(files.begin(), files.end(),
-            [](const fs::path& a, const fs::path& b) { return natural_less(a.filename().string(), b.filename().string()); });
+  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+    return natural_less(a.filename().string(), b.filename().string());
+  });
   return files;
 }
 
@@ -272,7 +277,8 @@ std::string other_format(const fs::path& file) {
   auto starts = [&head](std::string_view sig) { return head.compare(0, sig.size(), sig) == 0; };
   if (starts("\x89PNG")) return "a PNG image";
   if (starts("\xFF\xD8\xFF")) return "a JPEG image";
-  if (starts("II*") || starts("MM")) return head.size() >= 4 && (head[2] == '*' || head[3] == '*') ? "a TIFF image" : "";
+  if (starts("II*") || starts("MM"))
+    return head.size() >= 4 && (head[2] == '*' || head[3] == '*') ? "a TIFF image" : "";
   if (starts("%PDF")) return "a PDF document";
   if (starts("PK\x03\x04")) return "a ZIP archive";
   if (head.size() >= 132 && head.compare(128, 4, "DICM") == 0) return "a DICOM file";
@@ -293,7 +299,8 @@ std::vector<LabelVolume> read_label_image(const fs::path& file) {
       itk::ImageIOFactory::CreateImageIO(file.string().c_str(), itk::IOFileModeEnum::ReadMode);
   if (io.IsNull()) {
     if (const std::string what = other_format(file); !what.empty())
-      throw InvalidInput(ErrorCode::Format, at_file(file), "this is " + what + ", not a NIfTI, NRRD or MetaImage label image",
+      throw InvalidInput(ErrorCode::Format, at_file(file),
+                         "this is " + what + ", not a NIfTI, NRRD or MetaImage label image",
                          "give the label image itself (.nii, .nii.gz, .nrrd, .nhdr, .mha or .mhd); DICOM image folders "
                          "are read with their contours (Sunnybrook layout)");
     // A known extension whose header ITK cannot even recognise: truncated or corrupt.
@@ -317,7 +324,8 @@ std::vector<LabelVolume> read_label_image(const fs::path& file) {
                          "the image is " + std::to_string(dims.size()) + "D; a label volume must be 3D or 3D+t",
                          "give the whole stack as one 3D image (or one 4D image), not single slices");
     if (dims.size() > 4)
-      throw InvalidInput(ErrorCode::Format, at_file(file), "the image has " + std::to_string(dims.size()) + " dimensions",
+      throw InvalidInput(ErrorCode::Format, at_file(file),
+                         "the image has " + std::to_string(dims.size()) + " dimensions",
                          "give a 3D or 4D (3D+t) label image");
     if (io->GetPixelType() != itk::IOPixelEnum::SCALAR || io->GetNumberOfComponents() != 1)
       throw InvalidInput(ErrorCode::Format, at_file(file), "the image has vector or colour pixels",
@@ -348,18 +356,42 @@ std::vector<LabelVolume> read_label_image(const fs::path& file) {
   std::vector<int32_t> all;
   using C = itk::IOComponentEnum;
   switch (io->GetComponentType()) {
-    case C::UCHAR: convert<unsigned char>(raw, all, file); break;
-    case C::CHAR: convert<signed char>(raw, all, file); break;
-    case C::USHORT: convert<uint16_t>(raw, all, file); break;
-    case C::SHORT: convert<int16_t>(raw, all, file); break;
-    case C::UINT: convert<uint32_t>(raw, all, file); break;
-    case C::INT: convert<int32_t>(raw, all, file); break;
-    case C::ULONG: convert<unsigned long>(raw, all, file); break;
-    case C::LONG: convert<long>(raw, all, file); break;
-    case C::ULONGLONG: convert<unsigned long long>(raw, all, file); break;
-    case C::LONGLONG: convert<long long>(raw, all, file); break;
-    case C::FLOAT: convert<float>(raw, all, file); break;
-    case C::DOUBLE: convert<double>(raw, all, file); break;
+    case C::UCHAR:
+      convert<unsigned char>(raw, all, file);
+      break;
+    case C::CHAR:
+      convert<signed char>(raw, all, file);
+      break;
+    case C::USHORT:
+      convert<uint16_t>(raw, all, file);
+      break;
+    case C::SHORT:
+      convert<int16_t>(raw, all, file);
+      break;
+    case C::UINT:
+      convert<uint32_t>(raw, all, file);
+      break;
+    case C::INT:
+      convert<int32_t>(raw, all, file);
+      break;
+    case C::ULONG:
+      convert<unsigned long>(raw, all, file);
+      break;
+    case C::LONG:
+      convert<long>(raw, all, file);
+      break;
+    case C::ULONGLONG:
+      convert<unsigned long long>(raw, all, file);
+      break;
+    case C::LONGLONG:
+      convert<long long>(raw, all, file);
+      break;
+    case C::FLOAT:
+      convert<float>(raw, all, file);
+      break;
+    case C::DOUBLE:
+      convert<double>(raw, all, file);
+      break;
     default:
       throw InvalidInput(ErrorCode::Format, at_file(file), "unsupported pixel type", "give an integer label image");
   }
@@ -372,15 +404,18 @@ std::vector<LabelVolume> read_label_image(const fs::path& file) {
     geo.origin[static_cast<std::size_t>(a)] = io->GetOrigin(ua);
     const std::vector<double> col = io->GetDirection(ua);
     for (int r = 0; r < 3; ++r)
-      geo.direction[static_cast<std::size_t>(3 * r + a)] = r < static_cast<int>(col.size()) ? col[static_cast<std::size_t>(r)] : (r == a ? 1.0 : 0.0);
+      geo.direction[static_cast<std::size_t>(3 * r + a)] =
+          r < static_cast<int>(col.size()) ? col[static_cast<std::size_t>(r)] : (r == a ? 1.0 : 0.0);
     if (!(geo.spacing[static_cast<std::size_t>(a)] > 0.0) || !std::isfinite(geo.spacing[static_cast<std::size_t>(a)]))
-      throw InvalidInput(ErrorCode::Format, at_file(file), "voxel spacing must be positive and finite", "fix the image header");
+      throw InvalidInput(ErrorCode::Format, at_file(file), "voxel spacing must be positive and finite",
+                         "fix the image header");
     if (!std::isfinite(geo.origin[static_cast<std::size_t>(a)]))
       throw InvalidInput(ErrorCode::NonFinite, at_file(file), "the image origin is not finite", "fix the image header");
   }
   for (double d : geo.direction)
     if (!std::isfinite(d))
-      throw InvalidInput(ErrorCode::NonFinite, at_file(file), "the image direction is not finite", "fix the image header");
+      throw InvalidInput(ErrorCode::NonFinite, at_file(file), "the image direction is not finite",
+                         "fix the image header");
   const std::size_t per = static_cast<std::size_t>(geo.dims[0]) * static_cast<std::size_t>(geo.dims[1]) *
                           static_cast<std::size_t>(geo.dims[2]);
   const std::size_t nt = dims.size() == 4 ? dims[3] : 1;
@@ -411,7 +446,8 @@ LabelSeries read_label_series(const fs::path& input) {
       const auto uk = static_cast<std::size_t>(k);
       const double tol = 1e-4 * std::max(1.0, a.spacing[uk]);
       if (std::abs(a.spacing[uk] - b.spacing[uk]) > tol || std::abs(a.origin[uk] - b.origin[uk]) > 1e-3)
-        throw InvalidInput(ErrorCode::Format, where, "frame spacing or origin differs from frame 0 (" + s.files[0] + ")",
+        throw InvalidInput(ErrorCode::Format, where,
+                           "frame spacing or origin differs from frame 0 (" + s.files[0] + ")",
                            "give frames of one acquisition, all with the same geometry");
     }
     for (std::size_t k = 0; k < 9; ++k)
@@ -424,20 +460,24 @@ LabelSeries read_label_series(const fs::path& input) {
   return s;
 }
 
-void write_label_volume(const fs::path& file, const std::vector<LabelVolume>& frames, const ImageWriteOptions& options) {
+void write_label_volume(const fs::path& file, const std::vector<LabelVolume>& frames,
+                        const ImageWriteOptions& options) {
   register_factories();
   if (frames.empty()) throw InvalidInput(ErrorCode::Format, at_file(file), "nothing to write");
   const LabelVolume& g = frames.front();
-  const std::size_t per = static_cast<std::size_t>(g.dims[0]) * static_cast<std::size_t>(g.dims[1]) *
-                          static_cast<std::size_t>(g.dims[2]);
+  const std::size_t per =
+      static_cast<std::size_t>(g.dims[0]) * static_cast<std::size_t>(g.dims[1]) * static_cast<std::size_t>(g.dims[2]);
   for (const LabelVolume& v : frames)
     if (v.dims != g.dims || v.labels.size() != per)
-      throw InvalidInput(ErrorCode::Format, at_file(file), "frames of different sizes or labels.size() != dims product");
+      throw InvalidInput(ErrorCode::Format, at_file(file),
+                         "frames of different sizes or labels.size() != dims product");
   if (options.two_d && (frames.size() != 1 || g.dims[2] != 1))
     throw InvalidInput(ErrorCode::Format, at_file(file), "a 2D image needs one frame with dims[2] == 1");
-  itk::ImageIOBase::Pointer io = itk::ImageIOFactory::CreateImageIO(file.string().c_str(), itk::IOFileModeEnum::WriteMode);
+  itk::ImageIOBase::Pointer io =
+      itk::ImageIOFactory::CreateImageIO(file.string().c_str(), itk::IOFileModeEnum::WriteMode);
   if (io.IsNull())
-    throw InvalidInput(ErrorCode::Format, at_file(file), "no image writer for this extension", "use .nii, .nii.gz, .nrrd or .mha");
+    throw InvalidInput(ErrorCode::Format, at_file(file), "no image writer for this extension",
+                       "use .nii, .nii.gz, .nrrd or .mha");
   const unsigned nd = options.two_d ? 2u : (frames.size() > 1 ? 4u : 3u);
   io->SetNumberOfDimensions(nd);
   itk::ImageIORegion region(nd);
@@ -466,9 +506,18 @@ void write_label_volume(const fs::path& file, const std::vector<LabelVolume>& fr
       }
   };
   switch (options.pixel) {
-    case ImagePixel::Int16: io->SetComponentType(itk::IOComponentEnum::SHORT); fill(int16_t{}); break;
-    case ImagePixel::Int32: io->SetComponentType(itk::IOComponentEnum::INT); fill(int32_t{}); break;
-    case ImagePixel::Float32: io->SetComponentType(itk::IOComponentEnum::FLOAT); fill(float{}); break;
+    case ImagePixel::Int16:
+      io->SetComponentType(itk::IOComponentEnum::SHORT);
+      fill(int16_t{});
+      break;
+    case ImagePixel::Int32:
+      io->SetComponentType(itk::IOComponentEnum::INT);
+      fill(int32_t{});
+      break;
+    case ImagePixel::Float32:
+      io->SetComponentType(itk::IOComponentEnum::FLOAT);
+      fill(float{});
+      break;
   }
   io->SetFileName(file.string());
   io->SetUseCompression(options.compress);
@@ -476,7 +525,8 @@ void write_label_volume(const fs::path& file, const std::vector<LabelVolume>& fr
   try {
     io->Write(buf.data());
   } catch (const itk::ExceptionObject& e) {
-    throw IoError(ErrorCode::OutputNotWritable, at_file(file), std::string("cannot write the image: ") + e.GetDescription(),
+    throw IoError(ErrorCode::OutputNotWritable, at_file(file),
+                  std::string("cannot write the image: ") + e.GetDescription(),
                   "check that the folder exists and is writable");
   }
 }

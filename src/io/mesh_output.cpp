@@ -17,7 +17,8 @@ MeshFormats parse_mesh_formats(const std::string& list) {
   while (start <= list.size()) {
     const std::size_t end = std::min(list.find(',', start), list.size());
     const std::string name = list.substr(start, end - start);
-    if (name == "obj") formats.obj = true;
+    if (name == "obj")
+      formats.obj = true;
     else if (name != "vtp" && name != "pvd")
       throw InvalidInput(ErrorCode::Usage, Location{}, "unknown mesh format \"" + name + "\"",
                          "--format takes a comma-separated list of vtp (always written, with mesh.pvd) and obj");
@@ -34,8 +35,9 @@ void write_mesh_frames(const OutputDir& out, const MeshFrames& frames, const std
     const double t = f < frames.times_ms.size() ? frames.times_ms[f] : static_cast<double>(f);
     out.write(stem + ".vtp", format_vtp(frames.meshes[f]));
     if (formats.obj)
-      out.write(stem + ".obj", format_obj(frames.meshes[f], comment.empty() ? fmt::format("frame {}, t = {} ms", f, t)
-                                                                          : fmt::format("{}; frame {}, t = {} ms", comment, f, t)));
+      out.write(stem + ".obj",
+                format_obj(frames.meshes[f], comment.empty() ? fmt::format("frame {}, t = {} ms", f, t)
+                                                             : fmt::format("{}; frame {}, t = {} ms", comment, f, t)));
     entries.push_back({t, stem + ".vtp"});
   }
   out.write("mesh.pvd", format_pvd(entries));

@@ -33,8 +33,8 @@ struct ContourFile {
 };
 
 struct DicomInfo {
-  Vec3 ipp, x, y;        // position, row and column direction cosines
-  double dr = 1, dc = 1; // row spacing, column spacing (mm)
+  Vec3 ipp, x, y;         // position, row and column direction cosines
+  double dr = 1, dc = 1;  // row spacing, column spacing (mm)
   int instance = -1;
   int phases = 20;       // CardiacNumberOfImages
   double trigger = NAN;  // ms
@@ -89,7 +89,8 @@ DicomInfo read_dicom(const fs::path& file) {
   itk::GDCMImageIO::Pointer io = itk::GDCMImageIO::New();
   try {
     if (!io->CanReadFile(file.string().c_str()))
-      throw IoError(ErrorCode::Parse, at(file), "not a readable DICOM file", "give the DICOM image the contour was drawn on");
+      throw IoError(ErrorCode::Parse, at(file), "not a readable DICOM file",
+                    "give the DICOM image the contour was drawn on");
     io->SetFileName(file.string());
     io->ReadImageInformation();
   } catch (const itk::ExceptionObject& e) {
@@ -105,11 +106,13 @@ DicomInfo read_dicom(const fs::path& file) {
   auto need = [&](const char* key, const char* name, std::size_t n) {
     const std::vector<double> v = parse_ds(tag(key));
     if (v.size() != n)
-      throw InvalidInput(ErrorCode::Format, at(file), std::string("the DICOM image lacks a valid ") + name + " (" + key + ")",
+      throw InvalidInput(ErrorCode::Format, at(file),
+                         std::string("the DICOM image lacks a valid ") + name + " (" + key + ")",
                          "contours need the image's geometry: give the original DICOM file");
     for (double d : v)
       if (!std::isfinite(d))
-        throw InvalidInput(ErrorCode::NonFinite, at(file), std::string(name) + " is not finite", "fix the DICOM header");
+        throw InvalidInput(ErrorCode::NonFinite, at(file), std::string(name) + " is not finite",
+                           "fix the DICOM header");
     return v;
   };
   DicomInfo d;
@@ -122,7 +125,8 @@ DicomInfo read_dicom(const fs::path& file) {
   d.dr = ps[0];
   d.dc = ps[1];
   if (!(d.dr > 0 && d.dc > 0) || std::abs(norm(d.x) - 1) > 1e-3 || std::abs(norm(d.y) - 1) > 1e-3)
-    throw InvalidInput(ErrorCode::Format, at(file), "PixelSpacing or ImageOrientationPatient is invalid", "fix the DICOM header");
+    throw InvalidInput(ErrorCode::Format, at(file), "PixelSpacing or ImageOrientationPatient is invalid",
+                       "fix the DICOM header");
   if (auto v = parse_ds(tag("0020|0013")); v.size() == 1) d.instance = static_cast<int>(std::lround(v[0]));
   if (auto v = parse_ds(tag("0018|1090")); v.size() == 1 && v[0] >= 1) d.phases = static_cast<int>(std::lround(v[0]));
   if (auto v = parse_ds(tag("0018|1060")); v.size() == 1 && std::isfinite(v[0])) d.trigger = v[0];
@@ -164,7 +168,8 @@ std::vector<Vec2> read_points(const fs::path& file) {
     if (pts.empty() || !(pts.back() == p)) pts.push_back(p);
   }
   while (pts.size() > 1 && pts.back() == pts.front()) pts.pop_back();
-  if (pts.empty()) throw IoError(ErrorCode::EmptyFile, at(file), "the contour file has no points", "remove it or redraw the contour");
+  if (pts.empty())
+    throw IoError(ErrorCode::EmptyFile, at(file), "the contour file has no points", "remove it or redraw the contour");
   return pts;
 }
 
@@ -188,7 +193,8 @@ InputResult read_sunnybrook(const fs::path& folder, const SunnybrookOptions& opt
   }
   if (files.empty())
     throw IoError(ErrorCode::FileNotFound, at(folder),
-                  std::string("no ") + (options.contours == SunnybrookContours::Epicardium ? "o-contours/" : "i-contours/") +
+                  std::string("no ") +
+                      (options.contours == SunnybrookContours::Epicardium ? "o-contours/" : "i-contours/") +
                       "IM-*-NNNN-*contour-manual.txt files",
                   "give a Sunnybrook patient folder (i-contours/, o-contours/, dicoms_contoured/)");
 
@@ -209,8 +215,8 @@ InputResult read_sunnybrook(const fs::path& folder, const SunnybrookOptions& opt
       hit = cache.emplace(c.number, read_dicom(dcm)).first;
       if (hit->second.instance >= 0 && hit->second.instance != c.number)
         throw InvalidInput(ErrorCode::Format, at(dcm),
-                           "InstanceNumber " + std::to_string(hit->second.instance) + " differs from the contour file's image number " +
-                               std::to_string(c.number),
+                           "InstanceNumber " + std::to_string(hit->second.instance) +
+                               " differs from the contour file's image number " + std::to_string(c.number),
                            "pair each contour file with the DICOM image it names");
       triggers[(c.number - 1) % hit->second.phases].push_back(hit->second.trigger);
     }
@@ -262,8 +268,10 @@ InputResult read_sunnybrook(const fs::path& folder, const SunnybrookOptions& opt
   for (const auto& [phase, f] : frame_of) phases += (phases.empty() ? "" : ", ") + std::to_string(phase);
   r.notes.push_back(std::to_string(items.size()) + " contour files on " + std::to_string(cache.size()) +
                     " DICOM images; phases " + phases + " -> " + std::to_string(nf) + " frame(s)");
-  r.notes.push_back(std::string("frame times from ") + (timed ? "TriggerTime (0018,1060)" : "the phase index (1 ms per phase)"));
-  r.notes.push_back("coordinates: " + options.space + " mm (DICOM patient space" + (options.space == "RAS" ? ", x and y negated)" : ")"));
+  r.notes.push_back(std::string("frame times from ") +
+                    (timed ? "TriggerTime (0018,1060)" : "the phase index (1 ms per phase)"));
+  r.notes.push_back("coordinates: " + options.space + " mm (DICOM patient space" +
+                    (options.space == "RAS" ? ", x and y negated)" : ")"));
   return r;
 }
 

@@ -29,7 +29,8 @@ void append_raw(std::string& out, const T& v) {
 // Value of attribute `name` inside the tag that starts at `tag_begin` (up to the next '>').
 std::string attribute(std::string_view text, std::size_t tag_begin, std::string_view name) {
   const std::size_t tag_end = text.find('>', tag_begin);
-  const std::string_view tag = text.substr(tag_begin, tag_end == std::string_view::npos ? text.npos : tag_end - tag_begin);
+  const std::string_view tag =
+      text.substr(tag_begin, tag_end == std::string_view::npos ? text.npos : tag_end - tag_begin);
   const std::string key = " " + std::string(name) + "=\"";
   const std::size_t k = tag.find(key);
   if (k == std::string_view::npos) return {};
@@ -54,7 +55,8 @@ ArrayRef find_array(std::string_view text, std::string_view name, const std::str
   std::size_t pos = 0;
   while ((pos = text.find("<DataArray", pos)) != std::string_view::npos) {
     if (attribute(text, pos, "Name") == name) {
-      if (attribute(text, pos, "format") != "appended") bad(source, "DataArray " + std::string(name) + " is not appended");
+      if (attribute(text, pos, "format") != "appended")
+        bad(source, "DataArray " + std::string(name) + " is not appended");
       return {attribute(text, pos, "type"), to_count(attribute(text, pos, "offset"), source, "offset")};
     }
     pos += 10;
@@ -90,9 +92,11 @@ std::string format_vtp(const TriangleMesh& mesh) {
       "<!-- contour4d mesh: coordinates in mm, patient space of the input (LPS for DICOM-derived data) -->\n"
       "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
       "  <PolyData>\n"
-      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n"
+      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+      "NumberOfPolys=\"{}\">\n"
       "      <Points>\n"
-      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"0\"/>\n"
+      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" "
+      "offset=\"0\"/>\n"
       "      </Points>\n"
       "      <Polys>\n"
       "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>\n"
@@ -158,7 +162,8 @@ TriangleMesh parse_vtp(const std::string& content, const std::string& source) {
     Triangle t{};
     for (int k = 0; k < 3; ++k) {
       const std::int64_t v = c[static_cast<std::size_t>(start + k)];
-      if (v < 0 || static_cast<std::uint64_t>(v) >= np) bad(source, fmt::format("polygon {} has vertex index {} out of range", i, v));
+      if (v < 0 || static_cast<std::uint64_t>(v) >= np)
+        bad(source, fmt::format("polygon {} has vertex index {} out of range", i, v));
       t[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(v);
     }
     mesh.triangles.push_back(t);
@@ -194,7 +199,8 @@ std::vector<PvdEntry> parse_pvd(const std::string& content, const std::string& s
       e.time_ms = ts.empty() ? 0.0 : std::stod(ts, &used);
       if (used != ts.size()) throw std::invalid_argument(ts);
     } catch (const std::exception&) {
-      throw IoError(ErrorCode::BadMesh, Location{source}, "DataSet " + std::to_string(entries.size()) + " has an invalid timestep");
+      throw IoError(ErrorCode::BadMesh, Location{source},
+                    "DataSet " + std::to_string(entries.size()) + " has an invalid timestep");
     }
     if (e.file.empty())
       throw IoError(ErrorCode::BadMesh, Location{source}, "DataSet " + std::to_string(entries.size()) + " has no file");

@@ -20,7 +20,8 @@
 
 namespace c4d {
 
-CorrespondenceReport check_correspondence(const std::vector<TriangleMesh>& frames, const CorrespondenceOptions& options) {
+CorrespondenceReport check_correspondence(const std::vector<TriangleMesh>& frames,
+                                          const CorrespondenceOptions& options) {
   CorrespondenceReport r;
   const std::size_t nf = frames.size();
   r.median_edge_change_pct.assign(nf, 0.0);
@@ -53,8 +54,8 @@ CorrespondenceReport check_correspondence(const std::vector<TriangleMesh>& frame
     }
   }
   if (r.first_differing_frame >= 0) {
-    r.faults.push_back(fmt::format("no vertex correspondence: frame {} differs from frame 0: {}", r.first_differing_frame,
-                                   r.difference));
+    r.faults.push_back(fmt::format("no vertex correspondence: frame {} differs from frame 0: {}",
+                                   r.first_differing_frame, r.difference));
     return r;
   }
   if (nf < 2) return r;
@@ -76,7 +77,8 @@ CorrespondenceReport check_correspondence(const std::vector<TriangleMesh>& frame
   std::vector<float> len(edges.size() * nf);
   for (std::size_t e = 0; e < edges.size(); ++e)
     for (std::size_t f = 0; f < nf; ++f)
-      len[e * nf + f] = static_cast<float>(distance(frames[f].positions[edges[e].first], frames[f].positions[edges[e].second]));
+      len[e * nf + f] =
+          static_cast<float>(distance(frames[f].positions[edges[e].first], frames[f].positions[edges[e].second]));
   std::vector<std::vector<float>> change(nf);
   std::vector<std::size_t> jumps(nf, 0), measured(nf, 0);
   std::vector<float> tmp(nf);
@@ -102,7 +104,8 @@ CorrespondenceReport check_correspondence(const std::vector<TriangleMesh>& frame
     std::nth_element(change[f].begin(), mid, change[f].end());
     r.median_edge_change_pct[f] = 100.0 * *mid;
     r.edge_jump_pct[f] = 100.0 * static_cast<double>(jumps[f]) / static_cast<double>(measured[f]);
-    if (r.median_edge_change_pct[f] > options.suspicious_median_change_pct || r.edge_jump_pct[f] > options.suspicious_jump_pct) {
+    if (r.median_edge_change_pct[f] > options.suspicious_median_change_pct ||
+        r.edge_jump_pct[f] > options.suspicious_jump_pct) {
       r.suspicious_frames.push_back(static_cast<int>(f));
       r.faults.push_back(fmt::format(
           "vertex correspondence suspicious: frame {}, median edge-length change {:.1f} %, {:.2f} % of edges changed "

@@ -25,12 +25,28 @@ using Json = nlohmann::ordered_json;
 // Rounds to 6 decimals so the JSON stays readable; the measures are not that precise anyway.
 double r6(double x) { return std::isfinite(x) ? std::round(x * 1e6) / 1e6 : x; }
 
+// Facet normal angles against the truth (degrees); with the frame they were measured on, when given.
+Json normals_json(const NormalDeviation& d, int frame = -1) {
+  Json j{{"triangles", d.triangles},
+         {"mean_deg", r6(d.mean_deg)},
+         {"median_deg", r6(d.median_deg)},
+         {"p99_deg", r6(d.p99_deg)},
+         {"max_deg", r6(d.max_deg)}};
+  if (frame >= 0) j["frame"] = frame;
+  return j;
+}
+
 Json stats_json(const DistanceStats& s) {
-  return Json{{"samples", s.samples}, {"mean_mm", r6(s.mean)}, {"max_mm", r6(s.max)}, {"rms_mm", r6(s.rms)}, {"std_mm", r6(s.std)}};
+  return Json{{"samples", s.samples},
+              {"mean_mm", r6(s.mean)},
+              {"max_mm", r6(s.max)},
+              {"rms_mm", r6(s.rms)},
+              {"std_mm", r6(s.std)}};
 }
 
 Json surface_json(const SurfaceDistance& d) {
-  return Json{{"mesh_to_truth", stats_json(d.mesh_to_truth)}, {"truth_to_mesh", stats_json(d.truth_to_mesh)},
+  return Json{{"mesh_to_truth", stats_json(d.mesh_to_truth)},
+              {"truth_to_mesh", stats_json(d.truth_to_mesh)},
               {"hausdorff_mm", r6(d.hausdorff)}};
 }
 
@@ -50,8 +66,12 @@ Json quality_json(const AngleQuality& q) {
 Json topology_json(const TopologyReport& t) {
   Json comps = Json::array();
   for (const ComponentTopology& c : t.components)
-    comps.push_back({{"vertices", c.vertices}, {"edges", c.edges}, {"triangles", c.triangles},
-                     {"boundary_loops", c.boundary_loops}, {"euler", c.euler}, {"genus", c.genus}});
+    comps.push_back({{"vertices", c.vertices},
+                     {"edges", c.edges},
+                     {"triangles", c.triangles},
+                     {"boundary_loops", c.boundary_loops},
+                     {"euler", c.euler},
+                     {"genus", c.genus}});
   return Json{{"closed", t.closed()},
               {"edge_manifold", t.edge_manifold()},
               {"vertex_manifold", t.vertex_manifold()},
@@ -77,8 +97,11 @@ Json topology_json(const TopologyReport& t) {
 }
 
 Json ef_json(const EjectionFraction& e) {
-  return Json{{"edv_mm3", r6(e.edv)}, {"esv_mm3", r6(e.esv)}, {"ef_pct", r6(e.ef_pct)},
-              {"ed_frame", e.ed_frame}, {"es_frame", e.es_frame}};
+  return Json{{"edv_mm3", r6(e.edv)},
+              {"esv_mm3", r6(e.esv)},
+              {"ef_pct", r6(e.ef_pct)},
+              {"ed_frame", e.ed_frame},
+              {"es_frame", e.es_frame}};
 }
 
 // The slab between the first and last slice plane of a frame's contours.
@@ -148,13 +171,15 @@ Evaluation evaluate(const MeshFrames& meshes, const Sequence* contours, const Me
       const auto backward = metrics_internal::measure_samples(sample_surface(truth->meshes[f], sd.sampling), tree, sd);
       fe.accuracy = metrics_internal::combine(forward, backward, sd);
       if (has_contours) fe.contours_to_truth = summarize_distances(truth_tree.distances(samples));
+      fe.normals = normal_deviation(mesh, truth->meshes[f]);
     }
   });
 
   for (const FrameEvaluation& fe : ev.frames) {
     for (const std::string& s : fe.topology.faults) ev.faults.push_back(fmt::format("frame {}: {}", fe.frame, s));
     if (truth != nullptr && static_cast<std::size_t>(fe.frame) < truth->meshes.size() && !fe.accuracy)
-      ev.notes.push_back(fmt::format("frame {}: accuracy not measured (a mesh has no triangle of non-zero area)", fe.frame));
+      ev.notes.push_back(
+          fmt::format("frame {}: accuracy not measured (a mesh has no triangle of non-zero area)", fe.frame));
   }
   ev.correspondence = check_correspondence(meshes.meshes, options.correspondence);
   for (const std::string& s : ev.correspondence.faults) ev.faults.push_back(s);
@@ -173,12 +198,15 @@ std::string format_evaluation_json(const Evaluation& ev) {
   Json j;
   j["format"] = "contour4d-evaluation";
   j["version"] = 1;
-  j["units"] = {{"length", "mm"}, {"area", "mm²"}, {"volume", "mm³"}, {"angle", "degrees"}, {"fraction", "%"},
-                {"time", "ms"}};
+  j["units"] = {{"length", "mm"},     {"area", "mm²"},   {"volume", "mm³"},
+                {"angle", "degrees"}, {"fraction", "%"}, {"time", "ms"}};
   j["measures"] = {
-      {"conformity", "distance from points every step mm along each contour to the nearest mesh point (Lim et al. 2014)"},
+      {"conformity",
+       "distance from points every step mm along each contour to the nearest mesh point (Lim et al. 2014)"},
       {"quality", "% of triangle angles per 10-degree bin; bad triangles have an angle below 25 degrees (Tables 3, 4)"},
-      {"accuracy", "area-weighted surface distances both ways, exact point-to-triangle (Table 5); slab: between first and last slice"},
+      {"accuracy",
+       "area-weighted surface distances both ways, exact point-to-triangle (Table 5); slab: between first and last "
+       "slice"},
       {"simpson", "sum over slices of enclosed area × disc thickness (half-way to each neighbouring slice)"},
       {"correspondence", "median relative edge-length change against each edge's median length over all frames"}};
   Json frames = Json::array();
@@ -196,7 +224,8 @@ std::string format_evaluation_json(const Evaluation& ev) {
       Json slices = Json::array();
       for (const SliceArea& s : fe.simpson->slices)
         slices.push_back({{"slice", s.slice}, {"offset_mm", r6(s.offset)}, {"area_mm2", r6(s.area)}});
-      f["simpson"] = {{"volume_mm3", r6(fe.simpson->volume)}, {"trapezoid_volume_mm3", r6(fe.simpson->trapezoid_volume)},
+      f["simpson"] = {{"volume_mm3", r6(fe.simpson->volume)},
+                      {"trapezoid_volume_mm3", r6(fe.simpson->trapezoid_volume)},
                       {"slices", slices}};
     }
     if (fe.accuracy) {
@@ -204,17 +233,15 @@ std::string format_evaluation_json(const Evaluation& ev) {
       if (fe.accuracy->has_slab) f["accuracy_slab"] = surface_json(fe.accuracy->slab);
     }
     if (fe.contours_to_truth) f["contours_to_truth"] = stats_json(*fe.contours_to_truth);
+    if (fe.normals) f["normals_to_truth"] = normals_json(*fe.normals);
     frames.push_back(f);
   }
   j["frames"] = frames;
 
   const CorrespondenceReport& c = ev.correspondence;
-  Json corr{{"same_vertex_count", c.same_vertex_count},
-            {"same_triangles", c.same_triangles},
-            {"first_differing_frame", c.first_differing_frame},
-            {"difference", c.difference},
-            {"median_edge_change_pct", Json::array()},
-            {"edge_jump_pct", Json::array()},
+  Json corr{{"same_vertex_count", c.same_vertex_count},         {"same_triangles", c.same_triangles},
+            {"first_differing_frame", c.first_differing_frame}, {"difference", c.difference},
+            {"median_edge_change_pct", Json::array()},          {"edge_jump_pct", Json::array()},
             {"suspicious_frames", c.suspicious_frames}};
   for (double x : c.median_edge_change_pct) corr["median_edge_change_pct"].push_back(r6(x));
   for (double x : c.edge_jump_pct) corr["edge_jump_pct"].push_back(r6(x));
@@ -234,7 +261,8 @@ std::string format_evaluation_json(const Evaluation& ev) {
     }
   if (!means.empty()) {
     const DistanceStats m = summarize_distances(means);
-    s["conformity"] = {{"mean_of_frame_means_mm", r6(m.mean)}, {"std_of_frame_means_mm", r6(m.std)}, {"max_mm", r6(cmax)}};
+    s["conformity"] = {
+        {"mean_of_frame_means_mm", r6(m.mean)}, {"std_of_frame_means_mm", r6(m.std)}, {"max_mm", r6(cmax)}};
   }
   if (!ev.frames.empty()) {
     const std::size_t n = ev.frames.size();
@@ -261,8 +289,15 @@ std::string format_evaluation_json(const Evaluation& ev) {
       haus = std::max(haus, fe.accuracy->whole.hausdorff);
     }
   if (na > 0)
-    s["accuracy_mesh_to_truth"] = {{"mean_mm", r6(amean / na)}, {"max_mm", r6(amax)}, {"rms_mm", r6(std::sqrt(arms2 / na))},
+    s["accuracy_mesh_to_truth"] = {{"mean_mm", r6(amean / na)},
+                                   {"max_mm", r6(amax)},
+                                   {"rms_mm", r6(std::sqrt(arms2 / na))},
                                    {"hausdorff_mm", r6(haus)}};
+  // The worst frame's facet normals against the truth's (the shading a viewer shows).
+  const FrameEvaluation* worst = nullptr;
+  for (const FrameEvaluation& fe : ev.frames)
+    if (fe.normals && (!worst || fe.normals->p99_deg > worst->normals->p99_deg)) worst = &fe;
+  if (worst) s["normals_to_truth_worst_frame"] = normals_json(*worst->normals, worst->frame);
   s["mesh_volume"] = ef_json(ev.mesh_ef);
   if (ev.simpson_ef) s["simpson_volume"] = ef_json(*ev.simpson_ef);
   j["summary"] = s;
@@ -279,27 +314,33 @@ std::string format_evaluation_table(const Evaluation& ev) {
     any_acc |= fe.accuracy.has_value();
     any_simpson |= fe.simpson.has_value();
   }
-  out += fmt::format("{:>5} {:>9} {:>8} {:>8} {:>6} {:>6} {:>5} {:>6} {:>6} {:>6} {:>12}", "frame", "time ms", "vertices",
-                     "tris", "faults", "closed", "genus", "SI", "40-80%", "min°", "volume ml");
+  out += fmt::format("{:>5} {:>9} {:>8} {:>8} {:>6} {:>6} {:>5} {:>6} {:>6} {:>6} {:>12}", "frame", "time ms",
+                     "vertices", "tris", "faults", "closed", "genus", "SI", "40-80%", "min°", "volume ml");
   if (any_simpson) out += fmt::format(" {:>12}", "simpson ml");
   if (any_conf) out += fmt::format(" {:>9} {:>9}", "conf mean", "conf max");
-  if (any_acc) out += fmt::format(" {:>9} {:>9} {:>9} {:>9}", "acc mean", "acc max", "acc rms", "hausdorff");
+  if (any_acc)
+    out += fmt::format(" {:>9} {:>9} {:>9} {:>9} {:>9}", "acc mean", "acc max", "acc rms", "hausdorff", "normal99°");
   out += "\n";
   for (const FrameEvaluation& fe : ev.frames) {
     const TopologyReport& t = fe.topology;
-    out += fmt::format("{:>5} {:>9.1f} {:>8} {:>8} {:>6} {:>6} {:>5} {:>6} {:>6.2f} {:>6.2f} {:>12.2f}", fe.frame, fe.time_ms,
-                       t.vertices, t.triangles, t.faults.size(), t.closed() ? "yes" : "no", t.genus < 0 ? std::string("-") : std::to_string(t.genus),
+    out += fmt::format("{:>5} {:>9.1f} {:>8} {:>8} {:>6} {:>6} {:>5} {:>6} {:>6.2f} {:>6.2f} {:>12.2f}", fe.frame,
+                       fe.time_ms, t.vertices, t.triangles, t.faults.size(), t.closed() ? "yes" : "no",
+                       t.genus < 0 ? std::string("-") : std::to_string(t.genus),
                        t.self_intersections_checked ? std::to_string(t.self_intersections) : std::string("-"),
                        fe.quality.pct_40_80, fe.quality.min_angle_deg, fe.volume / 1000.0);
-    if (any_simpson) out += fmt::format(" {:>12}", fe.simpson ? fmt::format("{:.2f}", fe.simpson->volume / 1000.0) : "-");
+    if (any_simpson)
+      out += fmt::format(" {:>12}", fe.simpson ? fmt::format("{:.2f}", fe.simpson->volume / 1000.0) : "-");
     if (any_conf)
-      out += fmt::format(" {:>9} {:>9}", fe.conformity ? mm(fe.conformity->mean) : "-", fe.conformity ? mm(fe.conformity->max) : "-");
+      out += fmt::format(" {:>9} {:>9}", fe.conformity ? mm(fe.conformity->mean) : "-",
+                         fe.conformity ? mm(fe.conformity->max) : "-");
     if (any_acc) {
       if (fe.accuracy) {
         const DistanceStats& a = fe.accuracy->whole.mesh_to_truth;
-        out += fmt::format(" {:>9} {:>9} {:>9} {:>9}", mm(a.mean), mm(a.max), mm(a.rms), mm(fe.accuracy->whole.hausdorff));
+        out += fmt::format(" {:>9} {:>9} {:>9} {:>9} {:>9}", mm(a.mean), mm(a.max), mm(a.rms),
+                           mm(fe.accuracy->whole.hausdorff),
+                           fe.normals ? fmt::format("{:.2f}", fe.normals->p99_deg) : std::string("-"));
       } else {
-        out += fmt::format(" {:>9} {:>9} {:>9} {:>9}", "-", "-", "-", "-");
+        out += fmt::format(" {:>9} {:>9} {:>9} {:>9} {:>9}", "-", "-", "-", "-", "-");
       }
     }
     out += "\n";
@@ -310,16 +351,17 @@ std::string format_evaluation_table(const Evaluation& ev) {
     if (fe.conformity) means.push_back(fe.conformity->mean);
   if (!means.empty()) {
     const DistanceStats m = summarize_distances(means);
-    out += fmt::format("  conformity: mean of frame means {:.4f} mm, std {:.4f} mm (contour samples every {:g} mm)\n", m.mean,
-                       m.std, ev.conformity_step);
+    out += fmt::format("  conformity: mean of frame means {:.4f} mm, std {:.4f} mm (contour samples every {:g} mm)\n",
+                       m.mean, m.std, ev.conformity_step);
   }
   if (!ev.frames.empty()) {
     const std::size_t n = ev.frames.size();
     for (std::size_t f : {std::size_t{0}, n / 2, n - 1}) {
       const AngleQuality& q = ev.frames[f].quality;
-      out += fmt::format("  angles frame {:>3}: 40-50 {:.2f}%  50-60 {:.2f}%  60-70 {:.2f}%  70-80 {:.2f}%  total {:.2f}%  "
-                         "(<25°: {} triangles, {:.4f}%)\n",
-                         f, q.pct_40_50, q.pct_50_60, q.pct_60_70, q.pct_70_80, q.pct_40_80, q.bad_triangles, q.bad_pct);
+      out += fmt::format(
+          "  angles frame {:>3}: 40-50 {:.2f}%  50-60 {:.2f}%  60-70 {:.2f}%  70-80 {:.2f}%  total {:.2f}%  "
+          "(<25°: {} triangles, {:.4f}%)\n",
+          f, q.pct_40_50, q.pct_50_60, q.pct_60_70, q.pct_70_80, q.pct_40_80, q.bad_triangles, q.bad_pct);
     }
   }
   out += fmt::format("  mesh volume: EDV {:.2f} ml (frame {}), ESV {:.2f} ml (frame {}), EF {:.1f} %\n",

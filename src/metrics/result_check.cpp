@@ -19,7 +19,8 @@ namespace {
 bool is_boundary_fault(const std::string& fault) { return fault.find("the mesh is not closed") != std::string::npos; }
 
 // The topology faults of one frame (open ends allowed when !options.closed).
-std::vector<std::string> surface_faults(const TriangleMesh& mesh, const ResultCheckOptions& options, std::size_t& crossings) {
+std::vector<std::string> surface_faults(const TriangleMesh& mesh, const ResultCheckOptions& options,
+                                        std::size_t& crossings) {
   TopologyOptions topo;
   topo.self_intersections = options.self_intersections;
   const TopologyReport r = check_topology(mesh, topo);
@@ -36,15 +37,17 @@ void check_volume(FrameCheck& c, double simpson, double tolerance) {
   if (!(simpson > 0.0)) return;
   const double ratio = c.volume / simpson;
   if (!(std::abs(ratio - 1.0) <= tolerance))
-    c.faults.push_back(fmt::format("volume {:.1f} ml against {:.1f} ml by Simpson's discs of its contours ({:+.1f} %, "
-                                   "bound ±{:.0f} %)",
-                                   c.volume / 1000.0, simpson / 1000.0, 100.0 * (ratio - 1.0), 100.0 * tolerance));
+    c.faults.push_back(
+        fmt::format("volume {:.1f} ml against {:.1f} ml by Simpson's discs of its contours ({:+.1f} %, "
+                    "bound ±{:.0f} %)",
+                    c.volume / 1000.0, simpson / 1000.0, 100.0 * (ratio - 1.0), 100.0 * tolerance));
 }
 
 // Positions that cannot belong to the shared triangles, or are not numbers.
 void check_positions(FrameCheck& c, const std::vector<Vec3>& positions, std::size_t expected) {
   if (positions.size() != expected)
-    c.faults.push_back(fmt::format("{} vertices where frame 0 has {}: no vertex correspondence", positions.size(), expected));
+    c.faults.push_back(
+        fmt::format("{} vertices where frame 0 has {}: no vertex correspondence", positions.size(), expected));
   const auto bad = std::count_if(positions.begin(), positions.end(), [](const Vec3& p) {
     return !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z);
   });

@@ -73,7 +73,8 @@ std::int32_t SurfaceProjector::hint_of(std::int32_t triangle) const {
 }
 
 Vec3 SurfaceProjector::walk(Vec3 p, Vec3* normal, std::int32_t* hint) const {
-  if (empty() || *hint < 0 || static_cast<std::size_t>(*hint) >= impl_->triangles.size()) return closest(p, normal, hint);
+  if (empty() || *hint < 0 || static_cast<std::size_t>(*hint) >= impl_->triangles.size())
+    return closest(p, normal, hint);
   const Vec3 q = walk_closest(impl_->walk, p, *hint);
   // A walk can stop in a local minimum of the distance, which shows as a walk that ended far from the
   // query (rare: a fraction of a millimetre away on edges of about one). A walk that ends farther than kWalkTrust of its triangle's longest edge is checked by the tree, searched

@@ -63,7 +63,8 @@ SurfaceWalk make_surface_walk(TriangleMesh surface, std::vector<std::int32_t> pa
   for (std::size_t k = 0; k < w.triangles.size(); ++k) {
     const Triangle& t = w.triangles[k];
     const Vec3 c = (w.positions[t[0]] + w.positions[t[1]] + w.positions[t[2]]) / 3.0;
-    const double r = std::max({distance(c, w.positions[t[0]]), distance(c, w.positions[t[1]]), distance(c, w.positions[t[2]])});
+    const double r =
+        std::max({distance(c, w.positions[t[0]]), distance(c, w.positions[t[1]]), distance(c, w.positions[t[2]])});
     w.balls[k] = {c.x, c.y, c.z, r};
     const Vec3 a = w.positions[t[0]], n = cross(w.positions[t[1]] - a, w.positions[t[2]] - a);
     const double ln = norm(n);

@@ -36,7 +36,8 @@ namespace c4d {
 namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
-using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
+using Box =
+    CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
 
 Point to_point(Vec3 p) { return {p.x, p.y, p.z}; }
 
@@ -272,12 +273,14 @@ bool bucket_boxes(Grid& g, std::size_t n) {
   g.start.assign(g.ncells + 1, 0);
   for (std::size_t m = 0; m < n; ++m) for_each_cell_of(g, m, [&](std::size_t c) { ++g.start[c + 1]; });
   double tests = 0.0;
-  for (std::size_t c = 0; c < g.ncells; ++c) tests += 0.5 * static_cast<double>(g.start[c + 1]) * static_cast<double>(g.start[c + 1]);
+  for (std::size_t c = 0; c < g.ncells; ++c)
+    tests += 0.5 * static_cast<double>(g.start[c + 1]) * static_cast<double>(g.start[c + 1]);
   if (tests > kCrowded * static_cast<double>(n)) return false;
   for (std::size_t c = 0; c < g.ncells; ++c) g.start[c + 1] += g.start[c];
   g.items.resize(g.start[g.ncells]);
   std::vector<std::uint32_t> fill(g.start.begin(), g.start.end() - 1);
-  for (std::size_t m = 0; m < n; ++m) for_each_cell_of(g, m, [&](std::size_t c) { g.items[fill[c]++] = static_cast<std::uint32_t>(m); });
+  for (std::size_t m = 0; m < n; ++m)
+    for_each_cell_of(g, m, [&](std::size_t c) { g.items[fill[c]++] = static_cast<std::uint32_t>(m); });
   return true;
 }
 
@@ -348,7 +351,8 @@ PairScan pair_scan(const std::vector<std::array<double, 6>>& box, const Grid& g,
   const std::size_t ni = g.items.size();
   const float* lo0 = cols.bounds.data();
   const std::uint32_t* key0 = cols.keys.data();
-  return {box, g, marked, lo0, lo0 + ni, lo0 + 2 * ni, lo0 + 3 * ni, lo0 + 4 * ni, lo0 + 5 * ni, key0, key0 + ni, key0 + 2 * ni};
+  return {box,          g,    marked,    lo0,          lo0 + ni, lo0 + 2 * ni, lo0 + 3 * ni, lo0 + 4 * ni,
+          lo0 + 5 * ni, key0, key0 + ni, key0 + 2 * ni};
 }
 
 // Appends to `out` the pairs (a, b) with a's item first, b after a in cell c (items start[c]..e),
@@ -381,8 +385,10 @@ void scan_item(const PairScan& s, std::uint32_t a, std::uint32_t e, std::int64_t
     for (; b < e; b += 4) {
       // Not (x.lo > y.hi or y.lo > x.hi) in any coordinate: the scalar test below, lane by lane.
       __m128 keep = _mm_and_ps(_mm_cmpngt_ps(xl0, _mm_loadu_ps(hi0 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo0 + b), xh0));
-      keep = _mm_and_ps(keep, _mm_and_ps(_mm_cmpngt_ps(xl1, _mm_loadu_ps(hi1 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo1 + b), xh1)));
-      keep = _mm_and_ps(keep, _mm_and_ps(_mm_cmpngt_ps(xl2, _mm_loadu_ps(hi2 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo2 + b), xh2)));
+      keep = _mm_and_ps(
+          keep, _mm_and_ps(_mm_cmpngt_ps(xl1, _mm_loadu_ps(hi1 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo1 + b), xh1)));
+      keep = _mm_and_ps(
+          keep, _mm_and_ps(_mm_cmpngt_ps(xl2, _mm_loadu_ps(hi2 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo2 + b), xh2)));
       int lanes = _mm_movemask_ps(keep) & (e - b >= 4 ? 15 : (1 << (e - b)) - 1);  // items of the cell only
       if (lanes == 0) continue;
       const __m128i y0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key0 + b));
@@ -392,10 +398,12 @@ void scan_item(const PairScan& s, std::uint32_t a, std::uint32_t e, std::int64_t
       for (std::uint32_t k : xk)
         if (k != kNoKey) {
           const __m128i v = _mm_set1_epi32(static_cast<int>(k));
-          shared = _mm_or_si128(shared, _mm_or_si128(_mm_cmpeq_epi32(v, y0), _mm_or_si128(_mm_cmpeq_epi32(v, y1), _mm_cmpeq_epi32(v, y2))));
+          shared = _mm_or_si128(shared, _mm_or_si128(_mm_cmpeq_epi32(v, y0),
+                                                     _mm_or_si128(_mm_cmpeq_epi32(v, y1), _mm_cmpeq_epi32(v, y2))));
         }
       lanes &= ~_mm_movemask_ps(_mm_castsi128_ps(shared));
-      for (; lanes != 0; lanes &= lanes - 1) exact(b + static_cast<std::uint32_t>(__builtin_ctz(static_cast<unsigned>(lanes))));
+      for (; lanes != 0; lanes &= lanes - 1)
+        exact(b + static_cast<std::uint32_t>(__builtin_ctz(static_cast<unsigned>(lanes))));
     }
   }
 #endif
@@ -420,7 +428,8 @@ void scan_block(const PairScan& s, std::size_t block, std::vector<std::array<std
     const std::uint32_t e = g.start[c + 1];
     if (e - g.start[c] < 2) continue;
     const auto ck = static_cast<std::int64_t>(c % static_cast<std::size_t>(g.size[2]));
-    const auto cj = static_cast<std::int64_t>((c / static_cast<std::size_t>(g.size[2])) % static_cast<std::size_t>(g.size[1]));
+    const auto cj =
+        static_cast<std::int64_t>((c / static_cast<std::size_t>(g.size[2])) % static_cast<std::size_t>(g.size[1]));
     const auto ci = static_cast<std::int64_t>(c / static_cast<std::size_t>(g.size[2] * g.size[1]));
     for (std::uint32_t a = g.start[c]; a < e; ++a) scan_item(s, a, e, ci, cj, ck, out);
   }
@@ -438,7 +447,8 @@ void scan_block(const PairScan& s, std::size_t block, std::vector<std::array<std
 // untangled) are not reported.
 template <class F>
 bool grid_overlapping_pairs(const std::vector<std::array<double, 6>>& box, const std::vector<std::size_t>& info,
-                            const std::vector<char>* flagged, const std::vector<std::array<std::uint32_t, 3>>& keys, F&& f) {
+                            const std::vector<char>* flagged, const std::vector<std::array<std::uint32_t, 3>>& keys,
+                            F&& f) {
   const std::size_t n = box.size();
   if (n < 2) return true;
   Grid g;
@@ -468,7 +478,8 @@ bool grid_overlapping_pairs(const std::vector<std::array<double, 6>>& box, const
 
 // count_self_intersections and its restriction to flagged triangles (`only` null: all pairs).
 std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector<char>* only,
-                                     std::vector<std::pair<std::size_t, std::size_t>>* pairs, std::size_t max_pairs_listed) {
+                                     std::vector<std::pair<std::size_t, std::size_t>>* pairs,
+                                     std::size_t max_pairs_listed) {
   const std::size_t nv = mesh.positions.size();
   // The triangles tested (valid, finite, not collinear), in order: their boxes (min x y z, max x y z).
   std::vector<char> finite(nv);
@@ -481,7 +492,8 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
     const Triangle& t = mesh.triangles[i];
     if (!valid_triangle(t, nv) || !finite[t[0]] || !finite[t[1]] || !finite[t[2]]) continue;
     const Vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
-    if (CGAL::collinear(to_point(a), to_point(b), to_point(c))) continue;  // reported as degenerate, not as an intersection
+    if (CGAL::collinear(to_point(a), to_point(b), to_point(c)))
+      continue;  // reported as degenerate, not as an intersection
     coords.push_back({std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::min({a.z, b.z, c.z}),
                       std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})});
     info.push_back(i);
@@ -522,7 +534,9 @@ std::size_t count_intersecting_pairs(const TriangleMesh& mesh, const std::vector
   std::vector<std::array<std::uint32_t, 3>> keys(info.size());
   for (std::size_t m = 0; m < info.size(); ++m) {
     const Triangle& t = mesh.triangles[info[m]];
-    for (int k = 0; k < 3; ++k) keys[m][static_cast<std::size_t>(k)] = untangled[t[static_cast<std::size_t>(k)]] ? t[static_cast<std::size_t>(k)] : kNoKey;
+    for (int k = 0; k < 3; ++k)
+      keys[m][static_cast<std::size_t>(k)] =
+          untangled[t[static_cast<std::size_t>(k)]] ? t[static_cast<std::size_t>(k)] : kNoKey;
   }
   // The grid, or CGAL's box search where the grid's cells are crowded.
   const bool nothing_flagged = only != nullptr && flagged_count == 0;
@@ -557,7 +571,8 @@ std::size_t count_self_intersections(const TriangleMesh& mesh, std::vector<std::
 }
 
 std::size_t count_self_intersections_of(const TriangleMesh& mesh, const std::vector<char>& only,
-                                        std::vector<std::pair<std::size_t, std::size_t>>* pairs, std::size_t max_pairs_listed) {
+                                        std::vector<std::pair<std::size_t, std::size_t>>* pairs,
+                                        std::size_t max_pairs_listed) {
   return count_intersecting_pairs(mesh, &only, pairs, max_pairs_listed);
 }
 
@@ -788,7 +803,8 @@ std::vector<char> count_component_elements(const TriangleMesh& mesh, const std::
   for (const auto& [a, b] : edges.boundary) bl.unite(a, b);
   std::vector<std::pair<std::size_t, std::size_t>> loop_roots;  // (component, root vertex)
   for (std::size_t k = 0; k < edges.edge_start.size(); ++k)
-    if (edges.edge_size[k] == 1) loop_roots.push_back({comp_of[he[edges.edge_start[k]].tri], bl.find(he[edges.edge_start[k]].lo)});
+    if (edges.edge_size[k] == 1)
+      loop_roots.push_back({comp_of[he[edges.edge_start[k]].tri], bl.find(he[edges.edge_start[k]].lo)});
   std::sort(loop_roots.begin(), loop_roots.end());
   loop_roots.erase(std::unique(loop_roots.begin(), loop_roots.end()), loop_roots.end());
   for (const auto& [c, root] : loop_roots) ++r.components[c].boundary_loops;
@@ -838,14 +854,15 @@ void describe_faults(TopologyReport& r, const std::vector<std::pair<std::size_t,
                 (loops == 1 ? std::string("a hole") : fmt::format("{} holes", loops)) + "): the mesh is not closed");
   }
   if (r.nonmanifold_edges > 0)
-    f.push_back(plural(r.nonmanifold_edges, "non-manifold edge", "non-manifold edges") + " (shared by more than two triangles)");
+    f.push_back(plural(r.nonmanifold_edges, "non-manifold edge", "non-manifold edges") +
+                " (shared by more than two triangles)");
   if (r.nonmanifold_vertices > 0)
     f.push_back(plural(r.nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") +
                 " (its triangles form several separate fans)");
   if (r.flipped_triangles > 0)
     f.push_back(fmt::format("{} oriented against {} neighbours ({} traversed the same way by both triangles)",
-                            plural(r.flipped_triangles, "triangle", "triangles"), r.flipped_triangles == 1 ? "its" : "their",
-                            plural(r.misoriented_edges, "edge", "edges")));
+                            plural(r.flipped_triangles, "triangle", "triangles"),
+                            r.flipped_triangles == 1 ? "its" : "their", plural(r.misoriented_edges, "edge", "edges")));
   else if (r.misoriented_edges > 0 || !r.orientable)
     f.push_back(fmt::format("no consistent orientation exists ({} traversed the same way by both triangles)",
                             plural(r.misoriented_edges, "edge", "edges")));
@@ -856,14 +873,16 @@ void describe_faults(TopologyReport& r, const std::vector<std::pair<std::size_t,
   if (r.duplicate_triangles > 0)
     f.push_back(plural(r.duplicate_triangles, "duplicate triangle", "duplicate triangles") + " (same three vertices)");
   if (r.duplicate_vertices > 0)
-    f.push_back(plural(r.duplicate_vertices, "duplicate vertex", "duplicate vertices") + " (same position as another vertex)");
+    f.push_back(plural(r.duplicate_vertices, "duplicate vertex", "duplicate vertices") +
+                " (same position as another vertex)");
   if (r.unreferenced_vertices > 0)
-    f.push_back(plural(r.unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") + " (used by no triangle)");
+    f.push_back(plural(r.unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") +
+                " (used by no triangle)");
   if (r.self_intersections > 0) {
     std::string list;
     for (const auto& [i, j] : first_pairs) list += fmt::format("{}{}–{}", list.empty() ? "" : ", ", i, j);
-    f.push_back(fmt::format("{} of triangles intersect (first: {})",
-                            plural(r.self_intersections, "pair", "pairs"), list));
+    f.push_back(
+        fmt::format("{} of triangles intersect (first: {})", plural(r.self_intersections, "pair", "pairs"), list));
   }
 }
 

@@ -79,8 +79,10 @@ std::vector<DiscVolume> simpson_volumes(const Sequence& seq) {
   std::vector<double> gaps;
   for (std::size_t f = 0; f < seq.frames.size(); ++f) {
     DiscVolume& d = out[f];
-    for (const Slice& s : seq.frames[f].slices) d.slices.push_back({s.id, slice_offset(s, seq.normal), enclosed_area(s, seq.u, seq.v)});
-    std::stable_sort(d.slices.begin(), d.slices.end(), [](const SliceArea& a, const SliceArea& b) { return a.offset < b.offset; });
+    for (const Slice& s : seq.frames[f].slices)
+      d.slices.push_back({s.id, slice_offset(s, seq.normal), enclosed_area(s, seq.u, seq.v)});
+    std::stable_sort(d.slices.begin(), d.slices.end(),
+                     [](const SliceArea& a, const SliceArea& b) { return a.offset < b.offset; });
     for (std::size_t i = 1; i < d.slices.size(); ++i) gaps.push_back(d.slices[i].offset - d.slices[i - 1].offset);
   }
   double median_gap = 0.0;
@@ -92,7 +94,8 @@ std::vector<DiscVolume> simpson_volumes(const Sequence& seq) {
     const std::vector<double> t = thickness(d.slices, median_gap);
     for (std::size_t i = 0; i < d.slices.size(); ++i) d.volume += d.slices[i].area * t[i];
     for (std::size_t i = 1; i < d.slices.size(); ++i)
-      d.trapezoid_volume += 0.5 * (d.slices[i].area + d.slices[i - 1].area) * (d.slices[i].offset - d.slices[i - 1].offset);
+      d.trapezoid_volume +=
+          0.5 * (d.slices[i].area + d.slices[i - 1].area) * (d.slices[i].offset - d.slices[i - 1].offset);
   }
   return out;
 }

@@ -72,8 +72,8 @@ struct MatchedLoop {
 // Where frame t puts frame 0's matched chains: a target per chain vertex (fixed in the thin-plate guess),
 // and the contour it slides along afterwards.
 struct FrameTargets {
-  std::vector<char> fixed;   // per vertex
-  std::vector<Vec3> target;  // per vertex (meaningful where fixed)
+  std::vector<char> fixed;               // per vertex
+  std::vector<Vec3> target;              // per vertex (meaningful where fixed)
   std::vector<std::int32_t> line;        // per vertex: index into `lines`, −1 when not on a matched chain
   std::vector<char> orphan;              // per vertex: on a chain whose contour vanished, split or merged
   std::vector<std::vector<Vec3>> lines;  // the matched contours of frame t
@@ -138,8 +138,9 @@ void match_slice(const std::vector<const Chain*>& chains, const Slice* slice, co
     }
     const ContourMatch m = match_contour(a[i], b[static_cast<std::size_t>(partner)]);
     const std::vector<Vec2>& partner_poly = b[static_cast<std::size_t>(partner)];
-    out.loops.push_back({dot(pl.origin, pl.normal), from_plane(pl, centroid(a[i])), from_plane(pl, centroid(partner_poly)),
-                         equal_area_radius(a[i]), equal_area_radius(partner_poly)});
+    out.loops.push_back({dot(pl.origin, pl.normal), from_plane(pl, centroid(a[i])),
+                         from_plane(pl, centroid(partner_poly)), equal_area_radius(a[i]),
+                         equal_area_radius(partner_poly)});
     const auto line = static_cast<std::int32_t>(out.lines.size());
     out.lines.push_back(slice->contours[static_cast<std::size_t>(partner)].points);
     const std::vector<std::uint32_t>& loop = chains[i]->loop;
@@ -161,7 +162,8 @@ FrameTargets match_frame(const Sequence& seq, const std::map<int, std::vector<co
   out.orphan.assign(x0.size(), 0);
   const Frame& frame = seq.frames[t];
   for (const auto& [id, chains] : by_slice) {
-    const auto it = std::find_if(frame.slices.begin(), frame.slices.end(), [id = id](const Slice& s) { return s.id == id; });
+    const auto it =
+        std::find_if(frame.slices.begin(), frame.slices.end(), [id = id](const Slice& s) { return s.id == id; });
     match_slice(chains, it == frame.slices.end() ? nullptr : &*it, x0, opt, out);
   }
   return out;
@@ -438,13 +440,11 @@ MeshSequence carry_frames(const Sequence& seq, const TriangleMesh& frame0,
   std::map<int, std::vector<const Chain*>> by_slice;
   for (const Chain& c : chains) by_slice[c.slice].push_back(&c);
   std::vector<FrameTargets> targets(n);
-  tbb::parallel_for(std::size_t{1}, std::max<std::size_t>(1, n), [&](std::size_t t) {
-    targets[t] = match_frame(seq, by_slice, x0, t, options);
-  });
+  tbb::parallel_for(std::size_t{1}, std::max<std::size_t>(1, n),
+                    [&](std::size_t t) { targets[t] = match_frame(seq, by_slice, x0, t, options); });
   std::map<std::vector<char>, std::size_t> system_of;
   std::vector<std::size_t> system(n, 0);
-  for (std::size_t t = 1; t < n; ++t)
-    system[t] = system_of.emplace(targets[t].fixed, system_of.size()).first->second;
+  for (std::size_t t = 1; t < n; ++t) system[t] = system_of.emplace(targets[t].fixed, system_of.size()).first->second;
   std::vector<ThinPlate> systems(system_of.size());
   std::vector<const std::vector<char>*> masks(system_of.size());
   for (const auto& [mask, k] : system_of) masks[k] = &mask;

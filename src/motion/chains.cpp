@@ -72,13 +72,6 @@ int one_to_one_partner(const std::vector<std::vector<double>>& sim, std::size_t 
   return back == 1 ? partner : -1;
 }
 
-// The point of segment [a, b] closest to q.
-Vec3 closest_on_segment(Vec3 a, Vec3 b, Vec3 q) {
-  const Vec3 e = b - a;
-  const double ee = dot(e, e);
-  return a + (ee > 0 ? std::clamp(dot(q - a, e) / ee, 0.0, 1.0) : 0.0) * e;
-}
-
 // Closest point to q on the closed polyline `loop`. `hint` is the segment found last time (-1: none,
 // then every segment is tried); the search walks from it while a neighbouring segment is closer, so a
 // point that moves a little along the contour costs a few segment tests.

@@ -151,7 +151,10 @@ ContourMatch match_contour(const std::vector<Vec2>& source, const std::vector<Ve
   double lo = best - b.length / coarse, hi = best + b.length / coarse;
   for (int it = 0; it < 40; ++it) {  // golden-section search around the coarse minimum
     const double m1 = lo + 0.381966 * (hi - lo), m2 = hi - 0.381966 * (hi - lo);
-    if (cost(m1) < cost(m2)) hi = m2; else lo = m1;
+    if (cost(m1) < cost(m2))
+      hi = m2;
+    else
+      lo = m1;
   }
   best = 0.5 * (lo + hi);
   for (std::size_t i = 0; i < source.size(); ++i) {

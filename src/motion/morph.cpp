@@ -41,12 +41,12 @@ constexpr int kGuessSourcesPerContour = 24;  // RbfProject's first-guess RBF: ch
 constexpr int kProjectionIterations = 3;     // regularised projection rounds (the relaxation re-projects)
 constexpr double kStiffness = 1.0;           // weight of the Laplacian term against the closest-point term
 constexpr double kRetryMinGoodShare = 0.85;  // a frame with fewer of its angles in 40–80° is tried again
-constexpr int kRetrySweepFactor = 8;  // the first retry's relaxation rounds × this, each retry's after it × 2
-                                      // (biv-me frame 6: 61 → 0 triangles below 25°, 78 → 85 % of angles in
-                                      // 40–80°; 6 gave 84.8 % with the plane snap)
-constexpr int kPlaneSnapRelaxRounds = 1;  // relaxation rounds after the plane snap, each followed by another snap
-constexpr int kUntangleRounds = 4;  // where triangles intersect after the relaxation, rounds of umbrella steps
-                                    // within the surface around them (angle_repair.h untangle)
+constexpr int kRetrySweepFactor = 8;         // the first retry's relaxation rounds × this, each retry's after it × 2
+                                             // (biv-me frame 6: 61 → 0 triangles below 25°, 78 → 85 % of angles in
+                                             // 40–80°; 6 gave 84.8 % with the plane snap)
+constexpr int kPlaneSnapRelaxRounds = 1;     // relaxation rounds after the plane snap, each followed by another snap
+constexpr int kUntangleRounds = 4;           // where triangles intersect after the relaxation, rounds of umbrella steps
+                                             // within the surface around them (angle_repair.h untangle)
 
 // Uniform ("umbrella") Laplacian: (L x)_i = x_i − mean of the neighbours of i.
 SparseMatrix uniform_laplacian(const std::vector<std::vector<std::uint32_t>>& nb) {
@@ -140,8 +140,8 @@ void add_far_point(const std::vector<Vec3>& verts, const Vec3& normal, std::vect
 void rbf_guess(const MorphWork& w, FrameWork& f) {
   std::vector<Vec3> src, dst;
   const int per_contour = w.project ? kGuessSourcesPerContour : w.opt.sources_per_contour;
-  const std::size_t budget = static_cast<std::size_t>(std::max(1, per_contour)) *
-                             static_cast<std::size_t>(std::max(1, f.fr.matched));
+  const std::size_t budget =
+      static_cast<std::size_t>(std::max(1, per_contour)) * static_cast<std::size_t>(std::max(1, f.fr.matched));
   const std::size_t stride = std::max<std::size_t>(1, f.matched.size() / budget);
   for (std::size_t k = 0; k < f.matched.size(); k += stride) {
     src.push_back(f.x[f.matched[k].vertex]);
@@ -185,7 +185,8 @@ void project_onto_surface(MorphWork& w, FrameWork& f, const TriangleMesh& surfac
     for (std::size_t i = 0; i < nv; ++i) diagonal.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);
     W.setFromTriplets(diagonal.begin(), diagonal.end());
     if (!factor_lower(w.solver, SparseMatrix(W + kStiffness * w.LtL)))
-      throw SolverError(ErrorCode::Internal, Location{w.seq.source, -1, f.t}, "failed to factor the deformation system");
+      throw SolverError(ErrorCode::Internal, Location{w.seq.source, -1, f.t},
+                        "failed to factor the deformation system");
     w.factored = true;
   }
   const Eigen::MatrixXd ref_term = kStiffness * (w.LtL * to_matrix(f.x));
@@ -348,7 +349,8 @@ void morph_frame(MorphWork& w, FrameWork& f, const SurfaceOf& surface_of) {
   }
   for (const Vec3& p : f.x)
     if (!is_finite(p))
-      throw SolverError(ErrorCode::Internal, Location{w.seq.source, -1, f.t}, "the deformation produced non-finite positions");
+      throw SolverError(ErrorCode::Internal, Location{w.seq.source, -1, f.t},
+                        "the deformation produced non-finite positions");
 }
 
 }  // namespace
@@ -418,8 +420,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
                             const MorphOptions& opt, MorphReport* report) {
   if (opt.method == MorphMethod::RbfProject && surfaces.size() != seq.frames.size())
     throw SolverError(ErrorCode::Internal, {}, "morph_sequence: RbfProject needs one surface per frame");
-  return morph_sequence(seq, frame0, [&surfaces](std::size_t t) -> const TriangleMesh& { return surfaces[t]; }, opt,
-                        report);
+  return morph_sequence(
+      seq, frame0, [&surfaces](std::size_t t) -> const TriangleMesh& { return surfaces[t]; }, opt, report);
 }
 
 MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,

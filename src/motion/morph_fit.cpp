@@ -14,13 +14,13 @@
 namespace c4d::detail {
 namespace {
 
-constexpr ContourFitOptions kFit{};  // the fit (contour_fit.h's defaults)
-constexpr int kFitRounds = 4;        // guarded_contour_fit: fits, each keeping more vertices in place
+constexpr ContourFitOptions kFit{};     // the fit (contour_fit.h's defaults)
+constexpr int kFitRounds = 4;           // guarded_contour_fit: fits, each keeping more vertices in place
 constexpr double kFitMinAngleDeg = 20;  // the fit leaves no angle below this that was above it (25: biv-me frame 15
                                         // keeps 0.23 mm; 20: 0.13 mm, 3 triangles below 25° in 25 frames)
-constexpr double kFitGoalMm = 0.2;  // a frame whose fit leaves a contour sample farther than this from the mesh is
-                                    // fitted again from before the fit with kFitFallbackMinAngleDeg, and the
-                                    // closer result is kept
+constexpr double kFitGoalMm = 0.2;      // a frame whose fit leaves a contour sample farther than this from the mesh is
+                                        // fitted again from before the fit with kFitFallbackMinAngleDeg, and the
+                                        // closer result is kept
 constexpr double kFitFallbackMinAngleDeg = 15;  // see kFitGoalMm (left-heart cycle, contours touching at the
                                                 // saddle: 0.27 → 0.15 mm; a floor of 15 on every frame: biv-me
                                                 // frame 6 gets 16 triangles below 25°, against none)
@@ -34,8 +34,8 @@ std::vector<std::vector<Vec3>> frame_contours(const Frame& f) {
 }
 
 // Marks `mark` and `rings` rings of neighbours around the marked vertices (rings in CSR form).
-void grow(std::vector<char>& mark, const std::vector<std::size_t>& ring_start, const std::vector<std::uint32_t>& ring_index,
-          int rings) {
+void grow(std::vector<char>& mark, const std::vector<std::size_t>& ring_start,
+          const std::vector<std::uint32_t>& ring_index, int rings) {
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<char> grown = mark;
     for (std::size_t v = 0; v < mark.size(); ++v)
@@ -47,8 +47,8 @@ void grow(std::vector<char>& mark, const std::vector<std::size_t>& ring_start, c
 
 // Vertices of the triangles of `after` whose smallest angle fell below min(its angle in `before`,
 // floor_deg); true if any.
-bool mark_lost_angles(const std::vector<Vec3>& before, const std::vector<Vec3>& after, const std::vector<Triangle>& tris,
-                      double floor_deg, std::vector<char>& mark) {
+bool mark_lost_angles(const std::vector<Vec3>& before, const std::vector<Vec3>& after,
+                      const std::vector<Triangle>& tris, double floor_deg, std::vector<char>& mark) {
   bool any = false;
   for (const Triangle& tri : tris) {
     const double a = min_angle_deg(after[tri[0]], after[tri[1]], after[tri[2]]);
@@ -62,12 +62,12 @@ bool mark_lost_angles(const std::vector<Vec3>& before, const std::vector<Vec3>& 
 // The fit's state across its rounds (guarded_contour_fit).
 struct GuardedFit {
   const MorphWork& w;
-  const std::vector<Vec3>& x;         // the mesh before the fit
-  const std::vector<Vec3>& samples;   // the contour samples
-  double floor_deg;                   // no angle falls below min(this, its angle before)
-  std::vector<char> fixed;            // vertices that stay
+  const std::vector<Vec3>& x;                  // the mesh before the fit
+  const std::vector<Vec3>& samples;            // the contour samples
+  double floor_deg;                            // no angle falls below min(this, its angle before)
+  std::vector<char> fixed;                     // vertices that stay
   std::vector<std::int32_t> sample_triangles;  // each call's closest points start the next call's search
-                                                // (the meshes differ only near the far samples)
+                                               // (the meshes differ only near the far samples)
 };
 
 // The largest sample distance to (positions, frame 0's triangles).
@@ -96,7 +96,8 @@ void repair_fitted(GuardedFit& g, std::vector<Vec3>& fitted, double fit_max, std
   const SurfaceProjector surface(TriangleMesh{fitted, tris});
   AngleRepairOptions local = g.w.opt.angle_repair;
   local.target_deg = std::max(local.target_deg, kRetryMinAngleDeg);
-  repair_small_angles(mended, tris, frozen, [&](std::uint32_t, Vec3 p) { return surface.closest(p); }, local);
+  repair_small_angles(
+      mended, tris, frozen, [&](std::uint32_t, Vec3 p) { return surface.closest(p); }, local);
   std::vector<char> below_floor(nv, 0);
   if (mark_lost_angles(g.x, fitted, tris, g.floor_deg, below_floor) ||
       largest_distance(g, mended) <= fit_max + kFit.tolerance_mm) {

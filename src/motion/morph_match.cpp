@@ -47,7 +47,8 @@ std::string event_kind(int before, int after) {
 std::size_t spacing_stride(double spacing, double length, std::size_t count) {
   const double per = length / static_cast<double>(std::max<std::size_t>(1, count));
   const double ratio = per > 0 ? spacing / per : 1.0;
-  return (spacing <= 0 || ratio > 1e6) ? 0 : std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ratio - 1e-9)));
+  return (spacing <= 0 || ratio > 1e6) ? 0
+                                       : std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ratio - 1e-9)));
 }
 
 bool on_stride(std::size_t k, std::size_t stride, std::size_t count) {
@@ -59,7 +60,8 @@ bool on_stride(std::size_t k, std::size_t stride, std::size_t count) {
 void record_count_changes(MorphWork& w, FrameWork& f) {
   std::map<int, int>& previous_counts = w.counts;
   std::map<int, int> counts;
-  for (const Slice& s : w.seq.frames[static_cast<std::size_t>(f.t)].slices) counts[s.id] = static_cast<int>(s.contours.size());
+  for (const Slice& s : w.seq.frames[static_cast<std::size_t>(f.t)].slices)
+    counts[s.id] = static_cast<int>(s.contours.size());
   for (const auto& [id, n] : counts)
     if (previous_counts[id] != n) {
       w.rep.events.push_back({f.t, id, event_kind(previous_counts[id], n), previous_counts[id], n});
@@ -69,7 +71,8 @@ void record_count_changes(MorphWork& w, FrameWork& f) {
     if (n > 0 && !counts.count(id)) w.rep.events.push_back({f.t, id, "vanish", n, 0});
   if (static_cast<std::size_t>(f.t) + 1 < w.seq.frames.size()) {
     std::map<int, int> next;
-    for (const Slice& s : w.seq.frames[static_cast<std::size_t>(f.t) + 1].slices) next[s.id] = static_cast<int>(s.contours.size());
+    for (const Slice& s : w.seq.frames[static_cast<std::size_t>(f.t) + 1].slices)
+      next[s.id] = static_cast<int>(s.contours.size());
     for (const auto& [id, n] : counts)
       if (next[id] != n) f.unmatched.insert(id);
   }
@@ -102,12 +105,14 @@ void match_slice(const MorphWork& w, FrameWork& f, int id, const std::vector<std
     // Every chain vertex gets a target (they all guide the RBF). A contour that shrank would crowd its
     // chain if all slid along it: only chain vertices slide_spacing apart slide.
     double len = 0;
-    for (std::size_t k = 0; k < m.targets.size(); ++k) len += norm(m.targets[(k + 1) % m.targets.size()] - m.targets[k]);
+    for (std::size_t k = 0; k < m.targets.size(); ++k)
+      len += norm(m.targets[(k + 1) % m.targets.size()] - m.targets[k]);
     const std::size_t slide = spacing_stride(w.slide_spacing, len, ch.loop.size());
     const int line = static_cast<int>(f.lines.size());
     f.lines.push_back(ts.contours[static_cast<std::size_t>(partner)].points);
     for (std::size_t k = 0; k < ch.loop.size(); ++k)
-      f.matched.push_back({ch.loop[k], from_plane(pl, m.targets[k]), on_stride(k, slide, ch.loop.size()) ? line : -1, id});
+      f.matched.push_back(
+          {ch.loop[k], from_plane(pl, m.targets[k]), on_stride(k, slide, ch.loop.size()) ? line : -1, id});
     ++f.fr.matched;
   }
 }
@@ -157,7 +162,8 @@ constexpr double kSlideAnisotropy = 1.1;
 // shape unevenly since frame 0 (its height, from its area on the frame's own surface over its width,
 // scaled more than kSlideAnisotropy × its width, the contours' perimeter ratio, or the reverse), those
 // vertices must move through the plane to keep their triangles: the chains bounding it are held.
-void hold_uneven_bands(const Bands& b0, const TriangleMesh& surface, const Frame& frame, Vec3 normal, std::set<int>& held) {
+void hold_uneven_bands(const Bands& b0, const TriangleMesh& surface, const Frame& frame, Vec3 normal,
+                       std::set<int>& held) {
   const std::vector<double> at = band_areas(surface.positions, surface.triangles, normal, b0.heights);
   const std::map<int, double> pt = slice_perimeters(frame);
   const std::size_t n = b0.heights.size();

@@ -20,15 +20,15 @@
 namespace c4d::detail {
 namespace {
 
-constexpr int kRelaxRounds = 2;      // rounds per try (× MorphTry::sweep_factor), each ended by an exact
-                                     // re-projection (4 gave up to 2.6 points more of 40–80° for a fifth more time)
-constexpr int kRelaxSweeps = 100;    // sweeps per round (with momentum, as good as 1600 plain Jacobi sweeps)
-constexpr double kRelaxStep = 0.5;   // fraction of the tangential move per sweep
+constexpr int kRelaxRounds = 2;     // rounds per try (× MorphTry::sweep_factor), each ended by an exact
+                                    // re-projection (4 gave up to 2.6 points more of 40–80° for a fifth more time)
+constexpr int kRelaxSweeps = 100;   // sweeps per round (with momentum, as good as 1600 plain Jacobi sweeps)
+constexpr double kRelaxStep = 0.5;  // fraction of the tangential move per sweep
 constexpr double kRelaxMomentum = 0.9;  // heavy-ball momentum of the sweeps: speeds up the slow, smooth modes
                                         // about tenfold, so far fewer sweeps reach the same state
-constexpr double kShapeWeight = 0.5;  // share of the equilateral pull (each triangle draws the vertex towards the
-                                      // apex of the equilateral triangle on its opposite edge) against the
-                                      // umbrella: undoes the anisotropy that contraction leaves and the umbrella keeps
+constexpr double kShapeWeight = 0.5;    // share of the equilateral pull (each triangle draws the vertex towards the
+                                        // apex of the equilateral triangle on its opposite edge) against the
+// umbrella: undoes the anisotropy that contraction leaves and the umbrella keeps
 constexpr std::size_t kSweepBlock = 512;  // positions per parallel block of a sweep
 
 // Vertices per relaxation sweep step (MorphSteps::sweep_lanes): 0 the widest this CPU runs (4 with
@@ -140,7 +140,7 @@ void sweep_one(const SweepArrays& s, std::size_t i, Vec3* vel, Vec3* moved) {
   }
   const double inv = 1.0 / static_cast<double>(m);
   if (weighted) c = (static_cast<double>(m) / wsum) * c;  // the weighted mean, as m × mean (saddle zones)
-  Vec3 d = (Vec3{} + c) * inv;  // +0 + c: a −0 becomes +0, as in the lanes
+  Vec3 d = (Vec3{} + c) * inv;                            // +0 + c: a −0 becomes +0, as in the lanes
   const double no = static_cast<double>(s.opp_start[i + 1] - s.opp_start[i]);
   const Vec3 pull = (0.5 * mid + 0.8660254037844386 * cross(n, g)) / std::max(1.0, no);
   d = (1.0 - s.shape_weight) * d + s.shape_weight * pull;
@@ -159,45 +159,47 @@ double sweep(const MorphWork& w, FrameWork& f, const SweepArrays& s, const std::
   std::atomic<double> largest{0.0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, L.block_start.size() - 1, 1),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-    double biggest = 0.0;
-    auto finish = [&](std::size_t i) {
-      if (slides_k[i]) {
-        moved[i] = slide(f, L.order[i], moved[i]);
-        vel[i] = moved[i] - s.xs[i];
-      }
-      biggest = std::max(biggest, dot(vel[i], vel[i]));
-    };
-    auto step = [&](int width, const std::size_t* idx) {
-      if (width == 4) sweep_quad(s, idx, vel.data(), moved.data());
+                      double biggest = 0.0;
+                      auto finish = [&](std::size_t i) {
+                        if (slides_k[i]) {
+                          moved[i] = slide(f, L.order[i], moved[i]);
+                          vel[i] = moved[i] - s.xs[i];
+                        }
+                        biggest = std::max(biggest, dot(vel[i], vel[i]));
+                      };
+                      auto step = [&](int width, const std::size_t* idx) {
+                        if (width == 4)
+                          sweep_quad(s, idx, vel.data(), moved.data());
 #if defined(__SSE2__)
-      else if (width == 2) sweep_lanes<Sse2Lanes>(s, idx, vel.data(), moved.data());
+                        else if (width == 2)
+                          sweep_lanes<Sse2Lanes>(s, idx, vel.data(), moved.data());
 #endif
-      else sweep_one(s, idx[0], vel.data(), moved.data());
-      for (int k = 0; k < width; ++k) finish(idx[k]);
-    };
-    // Each block's free positions in groups of `lanes`, the last few two at a time or alone.
-    std::size_t group[4];
-    int count = 0;
-    for (std::size_t b = range.begin(); b != range.end(); ++b) {
-      for (std::size_t j = L.block_start[b]; j < L.block_start[b + 1]; ++j) {
-        group[count++] = L.free_k[j];
-        if (count == lanes) {
-          step(lanes, group);
-          count = 0;
-        }
-      }
-      int done = 0;
-      if (count >= 2 && lanes > 1) {
-        step(2, group);
-        done = 2;
-      }
-      for (; done < count; ++done) step(1, group + done);
-      count = 0;
-    }
-    double seen = largest.load();
-    while (biggest > seen && !largest.compare_exchange_weak(seen, biggest)) {
-    }
-  });
+                        else
+                          sweep_one(s, idx[0], vel.data(), moved.data());
+                        for (int k = 0; k < width; ++k) finish(idx[k]);
+                      };
+                      // Each block's free positions in groups of `lanes`, the last few two at a time or alone.
+                      std::size_t group[4];
+                      int count = 0;
+                      for (std::size_t b = range.begin(); b != range.end(); ++b) {
+                        for (std::size_t j = L.block_start[b]; j < L.block_start[b + 1]; ++j) {
+                          group[count++] = L.free_k[j];
+                          if (count == lanes) {
+                            step(lanes, group);
+                            count = 0;
+                          }
+                        }
+                        int done = 0;
+                        if (count >= 2 && lanes > 1) {
+                          step(2, group);
+                          done = 2;
+                        }
+                        for (; done < count; ++done) step(1, group + done);
+                        count = 0;
+                      }
+                      double seen = largest.load();
+                      while (biggest > seen && !largest.compare_exchange_weak(seen, biggest)) {}
+                    });
   return largest.load();
 }
 
@@ -284,7 +286,9 @@ void build_relax_layout(MorphWork& w) {
 // sweep_factor times as long: within a round every vertex moves in the tangent plane it had at the round's
 // start, and over 800 sweeps a crowded, strongly bent patch (a basal contour shrinking to a third in one
 // frame) drifts off the surface and folds when projected back.
-void relax(const MorphWork& w, FrameWork& f, const MorphTry& tr) { relax_rounds(w, f, tr, kRelaxRounds * tr.sweep_factor); }
+void relax(const MorphWork& w, FrameWork& f, const MorphTry& tr) {
+  relax_rounds(w, f, tr, kRelaxRounds * tr.sweep_factor);
+}
 
 // One round (around the vertices a plane snap just put on contours).
 void relax_round(const MorphWork& w, FrameWork& f, const MorphTry& tr) { relax_rounds(w, f, tr, 1); }

@@ -211,8 +211,9 @@ std::vector<char> snap_contour_corners(const MorphWork& w, FrameWork& f, const M
   co.reach = kSnapReachEdges * w.median_edge;
   co.tries = tr.corner_candidates;
   co.any_vertex = tr.corner_any_vertex;
-  snap_corners(f.x, f.lines, on_line, fixed,
-               [&](std::uint32_t v, Vec3 corner) { return harmless(w, f, v, corner, kCornerFloorDeg); }, co);
+  snap_corners(
+      f.x, f.lines, on_line, fixed,
+      [&](std::uint32_t v, Vec3 corner) { return harmless(w, f, v, corner, kCornerFloorDeg); }, co);
   return fixed;
 }
 

@@ -60,8 +60,8 @@ struct RelaxLayout {
   std::vector<std::uint32_t> ring_index;
   std::vector<std::size_t> opp_start;  // opposite edges: pairs in opp_index
   std::vector<std::uint32_t> opp_index;
-  int lanes = 1;                        // vertices per sweep step (MorphSteps::sweep_lanes)
-  std::vector<std::size_t> free_k;      // per block of positions: those with a ring, grouped by ring shape
+  int lanes = 1;                         // vertices per sweep step (MorphSteps::sweep_lanes)
+  std::vector<std::size_t> free_k;       // per block of positions: those with a ring, grouped by ring shape
   std::vector<std::size_t> block_start;  // block b's are free_k[block_start[b] .. block_start[b + 1])
 };
 
@@ -107,8 +107,7 @@ struct MorphWork {
 
 // The frame being morphed.
 struct FrameWork {
-  FrameWork(int frame, MorphFrameReport& report, std::vector<Vec3> start)
-      : t(frame), fr(report), x(std::move(start)) {}
+  FrameWork(int frame, MorphFrameReport& report, std::vector<Vec3> start) : t(frame), fr(report), x(std::move(start)) {}
   int t;                                 // the frame
   MorphFrameReport& fr;                  // its report
   std::vector<Vec3> x;                   // the mesh, from the previous frame's
@@ -118,8 +117,8 @@ struct FrameWork {
   std::set<int> held;       // slices whose chains do not slide in the relaxation
   std::vector<std::int32_t> slide_line;  // per vertex: the contour (line) it slides along, -1: none
   std::vector<std::int32_t> slide_hint;  // per vertex: the segment of it last found
-  std::vector<char> sliding;     // slides through the relaxation (else only snapped after it, if harmless)
-  std::vector<char> on_contour;  // is on its contour (moves along it)
+  std::vector<char> sliding;             // slides through the relaxation (else only snapped after it, if harmless)
+  std::vector<char> on_contour;          // is on its contour (moves along it)
   // RbfProject:
   std::unique_ptr<SurfaceProjector> surface;  // frame t's own surface
   Projector proj;

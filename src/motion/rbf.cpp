@@ -21,7 +21,8 @@ namespace c4d {
 RbfDeformer::RbfDeformer(const std::vector<Vec3>& src, const std::vector<Vec3>& dst, const RbfOptions& options)
     : centers_(src), affine_(options.affine) {
   const std::size_t n = src.size();
-  if (n == 0 || dst.size() != n) throw SolverError(ErrorCode::Internal, {}, "RbfDeformer: source and target sizes differ");
+  if (n == 0 || dst.size() != n)
+    throw SolverError(ErrorCode::Internal, {}, "RbfDeformer: source and target sizes differ");
   // Sources with nothing to fit against: pure translation.
   c2_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -120,7 +121,8 @@ void RbfDeformer::apply(std::vector<Vec3>& points) const {
       detail::rbf_quad(centers_.data(), c2_.data(), weights_.data(), centers_.size(), from, to);
     } else {
       detail::rbf_lanes<detail::Sse2Lanes>(centers_.data(), c2_.data(), weights_.data(), centers_.size(), from, to);
-      detail::rbf_lanes<detail::Sse2Lanes>(centers_.data(), c2_.data(), weights_.data(), centers_.size(), from + 2, to + 2);
+      detail::rbf_lanes<detail::Sse2Lanes>(centers_.data(), c2_.data(), weights_.data(), centers_.size(), from + 2,
+                                           to + 2);
     }
     for (std::size_t k = 0; k < 4; ++k) *to[k] = with_affine(in[k], *to[k]);
   });

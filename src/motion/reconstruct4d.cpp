@@ -30,7 +30,11 @@ std::vector<SliceEvent> count_events(const Sequence& seq) {
       for (const auto& [id, ba] : change)
         if (ba.first != ba.second) {
           const auto [b, a] = ba;
-          const char* kind = b == 0 ? "appear" : a == 0 ? "vanish" : (b == 1 && a > 1) ? "split" : (b > 1 && a == 1) ? "merge" : "change";
+          const char* kind = b == 0              ? "appear"
+                             : a == 0            ? "vanish"
+                             : (b == 1 && a > 1) ? "split"
+                             : (b > 1 && a == 1) ? "merge"
+                                                 : "change";
           events.push_back({static_cast<int>(f), id, kind, b, a});
         }
     }
@@ -145,8 +149,7 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   const int workers = std::max(1, tbb::this_task_arena::max_concurrency() - 1);
   for (int w = 0; w < workers; ++w)
     builders.run([&] {
-      while (take_and_build(-1)) {
-      }
+      while (take_and_build(-1)) {}
     });
   MeshSequence out;
   std::exception_ptr morph_error;

@@ -25,7 +25,8 @@ std::vector<std::vector<Vec3>> plane_section(const TriangleMesh& mesh, const Pla
     // oriented consistently with the triangle's orientation.
     int lone = (a0 == a1) ? 2 : (a0 == a2 ? 1 : 0);
     const std::uint32_t v = t[static_cast<std::size_t>(lone)];
-    const std::uint32_t vn = t[static_cast<std::size_t>((lone + 1) % 3)], vp = t[static_cast<std::size_t>((lone + 2) % 3)];
+    const std::uint32_t vn = t[static_cast<std::size_t>((lone + 1) % 3)],
+                        vp = t[static_cast<std::size_t>((lone + 2) % 3)];
     EdgeKey from = key(v, vn), to = key(vp, v);
     if (!above(v)) std::swap(from, to);
     next.emplace(from, to);

@@ -39,9 +39,7 @@ struct Sse2Lanes {
   static V and_(V a, V b) { return _mm_and_pd(a, b); }
   static V andnot(V a, V b) { return _mm_andnot_pd(a, b); }
   static V or_(V a, V b) { return _mm_or_pd(a, b); }
-  static V mask(const bool* on) {
-    return _mm_castsi128_pd(_mm_set_epi64x(on[1] ? -1 : 0, on[0] ? -1 : 0));
-  }
+  static V mask(const bool* on) { return _mm_castsi128_pd(_mm_set_epi64x(on[1] ? -1 : 0, on[0] ? -1 : 0)); }
 };
 
 #if defined(__AVX__)

@@ -19,13 +19,13 @@
 #include <utility>
 
 #include "contour4d/connect/similarity.h"
+#include "contour4d/core/contour.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/core/plane.h"
 
 namespace c4d {
 
 namespace {
-
 
 const Slice* find_slice(const Frame& f, int id) {
   for (const Slice& s : f.slices)
@@ -78,16 +78,6 @@ void check_frames(const Sequence& seq, int frame, int next_frame) {
 }
 
 // Distance (mm) from p to a closed polygon (or a single point / open polyline when closed = false).
-double polyline_distance(Vec2 p, const std::vector<Vec2>& poly, bool closed) {
-  if (poly.empty()) return std::numeric_limits<double>::infinity();
-  if (poly.size() == 1) return norm(p - poly[0]);
-  double best = std::numeric_limits<double>::infinity();
-  const std::size_t n = poly.size();
-  const std::size_t edges = closed ? n : n - 1;
-  for (std::size_t i = 0; i < edges; ++i) best = std::min(best, segment_distance(p, poly[i], poly[(i + 1) % n]));
-  return best;
-}
-
 std::vector<std::vector<std::uint32_t>> vertex_neighbours(const TriangleMesh& mesh) {
   std::vector<std::vector<std::uint32_t>> nb(mesh.positions.size());
   for (const Triangle& t : mesh.triangles)
@@ -184,9 +174,12 @@ VerticalMotion vertical_motion_direction(const Sequence& seq, int frame, int nex
   m.contours_after = count_on(f1, slice_id);
   const int before = m.contours_before, after = m.contours_after;
   if (before == after) return m;
-  if (before == 0) m.event = ContourEvent::Appear;
-  else if (after == 0) m.event = ContourEvent::Vanish;
-  else m.event = after > before ? ContourEvent::Split : ContourEvent::Merge;
+  if (before == 0)
+    m.event = ContourEvent::Appear;
+  else if (after == 0)
+    m.event = ContourEvent::Vanish;
+  else
+    m.event = after > before ? ContourEvent::Split : ContourEvent::Merge;
   if (m.event == ContourEvent::Appear || m.event == ContourEvent::Vanish) return m;
 
   // Neighbours by offset over the whole sequence (a slice without contours in a frame counts 0).
@@ -372,8 +365,7 @@ Ridge detect_ridge(const TriangleMesh& mesh, const std::vector<Vec3>& A, const s
 }
 
 VerticalField make_vertical_field(const Sequence& seq, const VerticalMotion& motion, const std::vector<Vec3>& ridge,
-                                  const std::vector<Vec3>& incident_points,
-                                  const VerticalDeformationOptions& options) {
+                                  const std::vector<Vec3>& incident_points, const VerticalDeformationOptions& options) {
   Location where;
   where.file = seq.source;
   where.frame = motion.frame;

@@ -30,7 +30,7 @@ constexpr double kPi = std::numbers::pi;
 // 14 mL. docs/phantoms.md discusses it.
 constexpr double kHeartA = 2.0;
 constexpr double kHeartB = 1.0;
-constexpr double kHeartTop = 35.0;  // y of the flat caps (mm)
+constexpr double kHeartTop = 35.0;   // y of the flat caps (mm)
 constexpr double kCycleMs = 1000.0;  // length of one cycle of a cyclic phantom (ms)
 
 using PointFn = std::function<Vec3(double d, double t)>;
@@ -219,8 +219,7 @@ FrameShape ellipsoid_frame(double a, double c, const std::vector<Plane1D>& plane
   std::vector<double> forced;
   for (const Plane1D& p : planes)
     if (std::abs(p.h) < c - margin) forced.push_back(-p.h);
-  const auto heights =
-      march([&](double da, double db) { return max_gap(f, 0, 2 * kPi, da, db); }, -c, c, forced, edge);
+  const auto heights = march([&](double da, double db) { return max_gap(f, 0, 2 * kPi, da, db); }, -c, c, forced, edge);
   FrameShape out;
   Ring prev = pole_ring(out.mesh, {0, 0, c}, 0, 2 * kPi);
   for (std::size_t k = 1; k + 1 < heights.size(); ++k) {
@@ -288,9 +287,9 @@ FrameShape torus_frame(double R, double r, const std::vector<Plane1D>& planes, d
 struct Swept {
   double R = 3, a = 1, b = 0.5;
   double sx = 1, sy = 1, sz = 1;
-  double ty = 0;     // world y of the saddle
-  double sign = 1;   // +1: legs up (left heart), -1: legs down (bifurcation)
-  double cap_y = 35; // world y of the flat caps
+  double ty = 0;      // world y of the saddle
+  double sign = 1;    // +1: legs up (left heart), -1: legs down (bifurcation)
+  double cap_y = 35;  // world y of the flat caps
   double saddle() const { return R - a; }
   double depth_of(double y) const { return saddle() - (y - ty) / (sign * sy); }
   double y_of(double d) const { return ty + sign * sy * (saddle() - d); }
@@ -374,9 +373,12 @@ FrameShape swept_frame(const Swept& s, const std::vector<Plane1D>& planes, doubl
   }
   right_half.t0 = -kPi / 2, right_half.period = kPi;
   left_half.t0 = kPi / 2, left_half.period = kPi;
-  for (int j = 3 * ns / 4; j < ns; ++j) right_half.idx.push_back(saddle_ring.idx[j]), right_half.param.push_back(saddle_ring.param[j] - 2 * kPi);
-  for (int j = 0; j < ns / 4; ++j) right_half.idx.push_back(saddle_ring.idx[j]), right_half.param.push_back(saddle_ring.param[j]);
-  for (int j = ns / 4; j < 3 * ns / 4; ++j) left_half.idx.push_back(saddle_ring.idx[j]), left_half.param.push_back(saddle_ring.param[j]);
+  for (int j = 3 * ns / 4; j < ns; ++j)
+    right_half.idx.push_back(saddle_ring.idx[j]), right_half.param.push_back(saddle_ring.param[j] - 2 * kPi);
+  for (int j = 0; j < ns / 4; ++j)
+    right_half.idx.push_back(saddle_ring.idx[j]), right_half.param.push_back(saddle_ring.param[j]);
+  for (int j = ns / 4; j < 3 * ns / 4; ++j)
+    left_half.idx.push_back(saddle_ring.idx[j]), left_half.param.push_back(saddle_ring.param[j]);
 
   // Legs: cap, rings down to the saddle.
   for (int side = 0; side < 2; ++side) {
@@ -430,27 +432,75 @@ struct Spec {
   Kind kind;
   int default_frames;  // 1: single frame; 3: ED, ES, ED; otherwise a cosine cycle
   double default_offset;
-  bool axis_y;         // slice axis y (else z)
+  bool axis_y;                 // slice axis y (else z)
   std::vector<double> ed, es;  // shape parameters at the two extremes of the cycle
 };
 
 const std::vector<Spec>& catalogue() {
   static const std::vector<Spec> specs = {
-      {"ellipsoid", "ellipsoid 25x25x40 mm shrinking to 19x19x30 and back (20 frames); apex and base cross planes",
-       "ellipsoid", Kind::Ellipsoid, 20, 2.5, false, {25, 40}, {19, 30}},
-      {"bifurcation", "one trunk above, two legs below; the branch point moves down through a slice plane (20 frames)",
-       "bifurcation", Kind::Swept, 20, 2.5, true, {3, 1, 1, 6, 6, 6, 1.0, -1, -30}, {3, 1, 1, 6, 6, 6, -4.0, -1, -30}},
-      {"torus", "torus R 30 mm, tube 12 mm breathing to 9 mm (10 frames); every section a ring with a hole",
-       "torus", Kind::Torus, 10, 0.0, false, {30, 12}, {30, 9}},
-      {"left-heart", "idealized left heart of Lim et al. 2014: ED, ES, ED (3 frames), slices y = 32.5 - 5k",
-       "lv", Kind::Swept, 3, 32.5, true,
-       {3, kHeartA, kHeartB, 5, 20, 18, 0, 1, kHeartTop}, {3, kHeartA, kHeartB, 3.5, 18.75, 14, -5, 1, kHeartTop}},
-      {"left-heart-cycle", "idealized left heart, smooth cycle ED -> ES -> ED (20 frames)", "lv", Kind::Swept, 20, 32.5,
-       true, {3, kHeartA, kHeartB, 5, 20, 18, 0, 1, kHeartTop}, {3, kHeartA, kHeartB, 3.5, 18.75, 14, -5, 1, kHeartTop}},
-      {"left-heart-ed", "idealized left heart, end-diastole only (1 frame)", "lv", Kind::Swept, 1, 32.5, true,
-       {3, kHeartA, kHeartB, 5, 20, 18, 0, 1, kHeartTop}, {}},
-      {"left-heart-es", "idealized left heart, end-systole only (1 frame)", "lv", Kind::Swept, 1, 32.5, true,
-       {3, kHeartA, kHeartB, 3.5, 18.75, 14, -5, 1, kHeartTop}, {}},
+      {"ellipsoid",
+       "ellipsoid 25x25x40 mm shrinking to 19x19x30 and back (20 frames); apex and base cross planes",
+       "ellipsoid",
+       Kind::Ellipsoid,
+       20,
+       2.5,
+       false,
+       {25, 40},
+       {19, 30}},
+      {"bifurcation",
+       "one trunk above, two legs below; the branch point moves down through a slice plane (20 frames)",
+       "bifurcation",
+       Kind::Swept,
+       20,
+       2.5,
+       true,
+       {3, 1, 1, 6, 6, 6, 1.0, -1, -30},
+       {3, 1, 1, 6, 6, 6, -4.0, -1, -30}},
+      {"torus",
+       "torus R 30 mm, tube 12 mm breathing to 9 mm (10 frames); every section a ring with a hole",
+       "torus",
+       Kind::Torus,
+       10,
+       0.0,
+       false,
+       {30, 12},
+       {30, 9}},
+      {"left-heart",
+       "idealized left heart of Lim et al. 2014: ED, ES, ED (3 frames), slices y = 32.5 - 5k",
+       "lv",
+       Kind::Swept,
+       3,
+       32.5,
+       true,
+       {3, kHeartA, kHeartB, 5, 20, 18, 0, 1, kHeartTop},
+       {3, kHeartA, kHeartB, 3.5, 18.75, 14, -5, 1, kHeartTop}},
+      {"left-heart-cycle",
+       "idealized left heart, smooth cycle ED -> ES -> ED (20 frames)",
+       "lv",
+       Kind::Swept,
+       20,
+       32.5,
+       true,
+       {3, kHeartA, kHeartB, 5, 20, 18, 0, 1, kHeartTop},
+       {3, kHeartA, kHeartB, 3.5, 18.75, 14, -5, 1, kHeartTop}},
+      {"left-heart-ed",
+       "idealized left heart, end-diastole only (1 frame)",
+       "lv",
+       Kind::Swept,
+       1,
+       32.5,
+       true,
+       {3, kHeartA, kHeartB, 5, 20, 18, 0, 1, kHeartTop},
+       {}},
+      {"left-heart-es",
+       "idealized left heart, end-systole only (1 frame)",
+       "lv",
+       Kind::Swept,
+       1,
+       32.5,
+       true,
+       {3, kHeartA, kHeartB, 3.5, 18.75, 14, -5, 1, kHeartTop},
+       {}},
   };
   return specs;
 }
@@ -467,10 +517,13 @@ void check_options(const PhantomOptions& o) {
   auto bad = [](const std::string& what, const std::string& hint) {
     throw InvalidInput(ErrorCode::Usage, {}, what, hint);
   };
-  if (!(o.spacing >= 0.2 && o.spacing <= 100)) bad("slice spacing out of range", "give --spacing between 0.2 and 100 mm");
-  if (!std::isnan(o.offset) && !(std::abs(o.offset) <= 1000)) bad("slice offset out of range", "give --offset within ±1000 mm");
+  if (!(o.spacing >= 0.2 && o.spacing <= 100))
+    bad("slice spacing out of range", "give --spacing between 0.2 and 100 mm");
+  if (!std::isnan(o.offset) && !(std::abs(o.offset) <= 1000))
+    bad("slice offset out of range", "give --offset within ±1000 mm");
   if (o.frames < 0 || o.frames > 1000) bad("frame count out of range", "give --frames between 1 and 1000 (0: default)");
-  if (!(o.truth_edge >= 0.05 && o.truth_edge <= 10)) bad("truth edge length out of range", "give a truth edge between 0.05 and 10 mm");
+  if (!(o.truth_edge >= 0.05 && o.truth_edge <= 10))
+    bad("truth edge length out of range", "give a truth edge between 0.05 and 10 mm");
 }
 
 //! Extent of a frame's shape along the local slice axis (mm).
@@ -550,8 +603,7 @@ Phantom make_phantom(const std::string& name, const PhantomOptions& options) {
   const double eps = 1e-9 * (hi - lo);
   const auto k0 = static_cast<long long>(std::floor((lo + eps - offset) / options.spacing)) + 1;
   const auto k1 = static_cast<long long>(std::ceil((hi - eps - offset) / options.spacing)) - 1;
-  if (k1 < k0)
-    throw InvalidInput(ErrorCode::Usage, {}, "no slice plane cuts the phantom", "use a smaller --spacing");
+  if (k1 < k0) throw InvalidInput(ErrorCode::Usage, {}, "no slice plane cuts the phantom", "use a smaller --spacing");
   std::vector<Plane1D> planes;
   for (long long k = k0; k <= k1; ++k) planes.push_back({static_cast<int>(k - k0), offset + options.spacing * k});
 

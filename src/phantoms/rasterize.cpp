@@ -32,7 +32,8 @@ Lattice slice_lattice(const Phantom& ph) {
       if (s.id > id_hi) id_hi = s.id, off_hi = s.offset;
     }
   if (id_lo >= id_hi)
-    throw InvalidInput(ErrorCode::Usage, {}, "phantom " + ph.name + " has fewer than two slice planes: nothing to stack",
+    throw InvalidInput(ErrorCode::Usage, {},
+                       "phantom " + ph.name + " has fewer than two slice planes: nothing to stack",
                        "use a smaller slice spacing");
   Lattice l;
   l.step = (off_hi - off_lo) / (id_hi - id_lo);
@@ -45,7 +46,8 @@ Lattice slice_lattice(const Phantom& ph) {
 
 std::vector<LabelVolume> rasterize_phantom(const Phantom& ph, const RasterizeOptions& o) {
   if (!(o.pixel_x > 0 && o.pixel_x <= 100 && o.pixel_y > 0 && o.pixel_y <= 100))
-    throw InvalidInput(ErrorCode::Usage, {}, "mask voxel size out of range", "give an in-plane voxel size in (0, 100] mm");
+    throw InvalidInput(ErrorCode::Usage, {}, "mask voxel size out of range",
+                       "give an in-plane voxel size in (0, 100] mm");
   if (!(o.margin >= 0 && o.margin <= 1000))
     throw InvalidInput(ErrorCode::Usage, {}, "mask margin out of range", "give a margin in [0, 1000] mm");
   if (o.label < 1 || o.label > 32767)
@@ -55,12 +57,15 @@ std::vector<LabelVolume> rasterize_phantom(const Phantom& ph, const RasterizeOpt
   // In-plane axes: two local axes in cyclic order after the slice axis (z: x, y; y: z, x), moved by
   // the oblique rotation when the phantom is oblique, so that i × j is ± the slice normal.
   const Vec3 n = ph.contours.normal;
-  const std::array<Vec3, 3> R = ph.oblique ? oblique_rotation() : std::array<Vec3, 3>{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+  const std::array<Vec3, 3> R =
+      ph.oblique ? oblique_rotation() : std::array<Vec3, 3>{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
   auto place = [&R](Vec3 v) { return Vec3{dot(R[0], v), dot(R[1], v), dot(R[2], v)}; };
   const Vec3 ex = place({1, 0, 0}), ey = place({0, 1, 0}), ez = place({0, 0, 1});
   Vec3 ci = ex, cj = ey;
-  if (std::abs(dot(n, ey)) > 0.5) ci = ez, cj = ex;
-  else if (std::abs(dot(n, ex)) > 0.5) ci = ey, cj = ez;
+  if (std::abs(dot(n, ey)) > 0.5)
+    ci = ez, cj = ex;
+  else if (std::abs(dot(n, ex)) > 0.5)
+    ci = ey, cj = ez;
   // Axis k runs towards increasing slice id: flip i if needed (keeps the matrix a rotation).
   const Vec3 towards_id = (lat.step >= 0 ? 1.0 : -1.0) * n;
   if (dot(cross(ci, cj), towards_id) < 0) ci = -ci;

@@ -93,12 +93,12 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
     fs::path dir = input;
     if (!has_gpfiles(dir) && has_gpfiles(dir / "guidepoints")) dir = dir / "guidepoints";
     if (!has_gpfiles(dir) && has_dicom_files(input))
-      throw IoError(ErrorCode::Format, where,
-                    "folder holds DICOM images but no contours: contour4d reads contours drawn on them (a Sunnybrook-style "
-                    "folder with i-contours/ and o-contours/ beside the images) or label images, not the images alone",
-                    kSupported);
-    if (!has_gpfiles(dir))
-      throw IoError(ErrorCode::Format, where, "folder holds no GPFile_*.txt files", kSupported);
+      throw IoError(
+          ErrorCode::Format, where,
+          "folder holds DICOM images but no contours: contour4d reads contours drawn on them (a Sunnybrook-style "
+          "folder with i-contours/ and o-contours/ beside the images) or label images, not the images alone",
+          kSupported);
+    if (!has_gpfiles(dir)) throw IoError(ErrorCode::Format, where, "folder holds no GPFile_*.txt files", kSupported);
     GpFileOptions gp;
     gp.contour_types = options.contour_types;
     gp.stack = options.stack;
@@ -150,7 +150,8 @@ void apply_frame_times(InputResult& r, const InputOptions& o) {
   }
   if (!asked) {
     r.timing = "unknown";
-    r.notes.push_back("frame times: unknown in this input (frames numbered 0, 1, 2, ... ms); give --frame-ms or --cycle-ms");
+    r.notes.push_back(
+        "frame times: unknown in this input (frames numbered 0, 1, 2, ... ms); give --frame-ms or --cycle-ms");
     return;
   }
   const double step = o.frame_ms > 0 ? o.frame_ms : o.cycle_ms / static_cast<double>(n);
@@ -159,13 +160,13 @@ void apply_frame_times(InputResult& r, const InputOptions& o) {
   r.notes.push_back(fmt::format("frame times: {:g} ms apart ({})", step, r.timing));
 }
 
-
 // The note on repairs and the frame times, for every input.
 void finish_input(InputResult& result, const InputOptions& options) {
   if (!result.repairs.empty())
-    result.notes.push_back(fmt::format("repaired {} contour flaw(s) instead of refusing the input (--strict refuses): "
-                                       "see report.json \"repairs\"",
-                                       result.repairs.size()));
+    result.notes.push_back(
+        fmt::format("repaired {} contour flaw(s) instead of refusing the input (--strict refuses): "
+                    "see report.json \"repairs\"",
+                    result.repairs.size()));
   apply_frame_times(result, options);
 }
 

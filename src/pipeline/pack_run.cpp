@@ -33,6 +33,7 @@ PackRun pack_run(const MeshSequence& seq, const PackRunOptions& options) {
   if (options.gltf) {
     GltfOptions g;
     g.step = options.gltf_step;
+    g.quantized = options.gltf_quantized;
     run.glb = gltf_glb_bytes(run.input, g);
   }
   return run;

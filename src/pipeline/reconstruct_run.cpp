@@ -23,8 +23,13 @@ using Json = nlohmann::ordered_json;
 Json connections_json(const std::vector<Connection>& cs) {
   Json a = Json::array();
   for (const Connection& c : cs)
-    a.push_back({{"frame_a", c.frame_a}, {"slice_a", c.slice_a}, {"contour_a", c.contour_a}, {"frame_b", c.frame_b},
-                 {"slice_b", c.slice_b}, {"contour_b", c.contour_b}, {"similarity", c.similarity},
+    a.push_back({{"frame_a", c.frame_a},
+                 {"slice_a", c.slice_a},
+                 {"contour_a", c.contour_a},
+                 {"frame_b", c.frame_b},
+                 {"slice_b", c.slice_b},
+                 {"contour_b", c.contour_b},
+                 {"similarity", c.similarity},
                  {"kept_by_threshold", c.kept_by_threshold}});
   return a;
 }
@@ -32,23 +37,39 @@ Json connections_json(const std::vector<Connection>& cs) {
 Json repairs_json(const std::vector<ContourRepair>& repairs) {
   Json a = Json::array();
   for (const ContourRepair& r : repairs)
-    a.push_back({{"frame", r.frame}, {"slice", r.slice}, {"contour", r.contour}, {"kind", r.kind}, {"detail", r.detail},
+    a.push_back({{"frame", r.frame},
+                 {"slice", r.slice},
+                 {"contour", r.contour},
+                 {"kind", r.kind},
+                 {"detail", r.detail},
                  {"moved_mm", r.moved_mm}});
   return a;
 }
 
 Json surface_json(const SurfaceReport& r) {
-  return {{"contours", r.contours},   {"caps", r.caps},         {"branchings", r.branchings},
-          {"vertices", r.vertices},   {"triangles", r.triangles}, {"closed", r.closed},
-          {"self_intersects", r.self_intersections_checked ? Json(r.self_intersects) : Json()}, {"euler", r.euler}, {"components", r.components},
-          {"volume_mm3", r.volume},   {"warnings", r.warnings},  {"connections", connections_json(r.connections)}};
+  return {{"contours", r.contours},
+          {"caps", r.caps},
+          {"branchings", r.branchings},
+          {"vertices", r.vertices},
+          {"triangles", r.triangles},
+          {"closed", r.closed},
+          {"self_intersects", r.self_intersections_checked ? Json(r.self_intersects) : Json()},
+          {"euler", r.euler},
+          {"components", r.components},
+          {"volume_mm3", r.volume},
+          {"warnings", r.warnings},
+          {"connections", connections_json(r.connections)}};
 }
 
 Json checks_json(const ResultCheck& check) {
   Json a = Json::array();
   for (const FrameCheck& c : check.frames)
-    a.push_back({{"frame", c.frame}, {"ok", c.ok()}, {"volume_mm3", c.volume}, {"simpson_volume_mm3", c.simpson_volume},
-                 {"crossing_triangle_pairs", c.self_intersections}, {"faults", c.faults}});
+    a.push_back({{"frame", c.frame},
+                 {"ok", c.ok()},
+                 {"volume_mm3", c.volume},
+                 {"simpson_volume_mm3", c.simpson_volume},
+                 {"crossing_triangle_pairs", c.self_intersections},
+                 {"faults", c.faults}});
   return a;
 }
 
@@ -69,7 +90,7 @@ Reconstruct4DOptions library_options(const ReconstructRunOptions& a, const std::
 }
 
 Json start_report(const InputResult& read, const std::string& input, const ReconstructRunOptions& a,
-                            const Reconstruct4DOptions& opt) {
+                  const Reconstruct4DOptions& opt) {
   return {
       {"tool", "contour4d 0.1.0"},
       {"input", input},
@@ -80,8 +101,12 @@ Json start_report(const InputResult& read, const std::string& input, const Recon
       {"frame_times", {{"source", read.timing}, {"known", read.timing != "unknown"}}},
       {"repairs", repairs_json(read.repairs)},
       {"options",
-       {{"edge_mm", a.edge}, {"cap", a.cap}, {"method", a.method}, {"threshold", opt.surface.threshold},
-        {"tiling", a.tiling}, {"vertical_deformation", a.vertical}}},
+       {{"edge_mm", a.edge},
+        {"cap", a.cap},
+        {"method", a.method},
+        {"threshold", opt.surface.threshold},
+        {"tiling", a.tiling},
+        {"vertical_deformation", a.vertical}}},
   };
 }
 
@@ -101,11 +126,15 @@ std::string edge_warning(const Sequence& seq, double edge) {
   const double gap = seq.frames.empty() ? 0.0 : median_slice_gap(seq);
   if (gap <= 0.0) return {};
   if (edge > 0.5 * gap)
-    return fmt::format("--edge {:g} mm is coarse for slices {:.1f} mm apart: less than two rows of triangles between "
-                       "slices (try --edge {:.1f} or less)", edge, gap, 0.25 * gap);
+    return fmt::format(
+        "--edge {:g} mm is coarse for slices {:.1f} mm apart: less than two rows of triangles between "
+        "slices (try --edge {:.1f} or less)",
+        edge, gap, 0.25 * gap);
   if (edge < 0.01 * gap)
-    return fmt::format("--edge {:g} mm is fine for slices {:.1f} mm apart: a very large mesh, slow to make (try --edge "
-                       "{:.1f})", edge, gap, std::max(0.1 * gap, 0.5));
+    return fmt::format(
+        "--edge {:g} mm is fine for slices {:.1f} mm apart: a very large mesh, slow to make (try --edge "
+        "{:.1f})",
+        edge, gap, std::max(0.1 * gap, 0.5));
   return {};
 }
 
@@ -129,8 +158,8 @@ ResultCheck run_checks(const ReconstructRunOptions& a, const Sequence& seq, cons
   return check;
 }
 
-void one_frame(const ReconstructRunOptions& a, const Sequence& seq, const Reconstruct4DOptions& opt, ReconstructRun& run,
-               Json& report) {
+void one_frame(const ReconstructRunOptions& a, const Sequence& seq, const Reconstruct4DOptions& opt,
+               ReconstructRun& run, Json& report) {
   if (a.frame >= static_cast<int>(seq.frames.size()))
     throw InvalidInput(ErrorCode::Usage, Location{run.input},
                        fmt::format("--frame {} is out of range: the input has {} frames", a.frame, seq.frames.size()));
@@ -192,12 +221,16 @@ Json frames_json(const MeshSequence& result, const Reconstruct4DReport& rr) {
 void describe_topology(const Reconstruct4DReport& rr, Json& report, const RunMessage& say) {
   Json events = Json::array();
   for (const SliceEvent& e : rr.morph.events)
-    events.push_back({{"frame", e.frame}, {"slice", e.slice}, {"kind", e.kind}, {"before", e.before}, {"after", e.after}});
+    events.push_back(
+        {{"frame", e.frame}, {"slice", e.slice}, {"kind", e.kind}, {"before", e.before}, {"after", e.after}});
   report["topology_events"] = events;
   Json subs = Json::array();
   for (const SubMeshLifetime& s : rr.morph.submeshes)
-    subs.push_back({{"slice_below", s.slice_below}, {"slice_above", s.slice_above}, {"first_frame", s.first_frame},
-                    {"last_frame", s.last_frame}, {"contours_below", s.contours_below},
+    subs.push_back({{"slice_below", s.slice_below},
+                    {"slice_above", s.slice_above},
+                    {"first_frame", s.first_frame},
+                    {"last_frame", s.last_frame},
+                    {"contours_below", s.contours_below},
                     {"contours_above", s.contours_above}});
   report["submeshes"] = subs;
   if (!say) return;
@@ -224,7 +257,8 @@ Json summary_json(const ReconstructRun& run, const InputResult& read, const Reco
                   const Json& report) {
   const MeshSequence& result = run.result;
   std::vector<double> volumes_ml;
-  for (std::size_t f = 0; f < result.positions.size(); ++f) volumes_ml.push_back(signed_volume(result.frame(f)) / 1000.0);
+  for (std::size_t f = 0; f < result.positions.size(); ++f)
+    volumes_ml.push_back(signed_volume(result.frame(f)) / 1000.0);
   const auto ed = std::max_element(volumes_ml.begin(), volumes_ml.end());
   const auto es = std::min_element(volumes_ml.begin(), volumes_ml.end());
   const int first = a.frame >= 0 ? a.frame : 0;
@@ -292,7 +326,8 @@ ReconstructRun reconstruct_run(const InputResult& read, const std::string& input
   } else {
     all_frames(a, seq, opt, closed, run, report, say);
   }
-  report["checks"] = {{"ok", run.check.ok()}, {"volume_tolerance", a.volume_tolerance}, {"frames", checks_json(run.check)}};
+  report["checks"] = {
+      {"ok", run.check.ok()}, {"volume_tolerance", a.volume_tolerance}, {"frames", checks_json(run.check)}};
   Json whole;
   whole["summary"] = summary_json(run, read, a, report);
   whole.update(report);
@@ -317,7 +352,8 @@ void write_run(OutputDir& out, const ReconstructRun& run, const MeshFormats& for
       report["FAILED"] = run.check.summary();
       write_mesh_sequence(failed, run.result, fmt::format("FAILED contour4d reconstruct {}", run.input), formats);
       failed.write("report.json", report.dump(2) + "\n");
-      failed.write("FAILED.txt", "This result FAILED its checks and is kept only for debugging:\n" + run.check.summary() + "\n");
+      failed.write("FAILED.txt",
+                   "This result FAILED its checks and is kept only for debugging:\n" + run.check.summary() + "\n");
       failed.commit();
       hint += fmt::format("; the failed result is in {} (marked FAILED)", keep_failed);
     } else {

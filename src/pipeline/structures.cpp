@@ -34,7 +34,8 @@ std::vector<Contour> wall_slice(const Sequence& seq, const Slice& s, const std::
     if (c.label == inner) inners.push_back(c);
   }
   if (outers.empty()) {
-    if (!inners.empty()) notes.push_back(fmt::format("{}: frame {}, slice {}: {} without {}, left out", name, frame, s.id, inner, outer));
+    if (!inners.empty())
+      notes.push_back(fmt::format("{}: frame {}, slice {}: {} without {}, left out", name, frame, s.id, inner, outer));
     return {};
   }
   std::vector<std::vector<Vec2>> outer_2d;
@@ -71,9 +72,9 @@ Sequence drop_empty_frames(Sequence seq, std::vector<int>& kept) {
 Sequence only_label(Sequence seq, const std::string& label) {
   for (Frame& f : seq.frames)
     for (Slice& s : f.slices)
-      s.contours.erase(std::remove_if(s.contours.begin(), s.contours.end(),
-                                      [&](const Contour& c) { return c.label != label; }),
-                       s.contours.end());
+      s.contours.erase(
+          std::remove_if(s.contours.begin(), s.contours.end(), [&](const Contour& c) { return c.label != label; }),
+          s.contours.end());
   return seq;
 }
 
@@ -84,8 +85,8 @@ Structure make_structure(const InputResult& read, const std::string& name) {
   st.input.format = read.format;
   st.input.timing = read.timing;
   st.input.repairs = read.repairs;
-  Sequence seq = st.wall ? wall_sequence(read.sequence, kLvEndo, kLvEpi, name, st.input.notes)
-                         : only_label(read.sequence, name);
+  Sequence seq =
+      st.wall ? wall_sequence(read.sequence, kLvEndo, kLvEpi, name, st.input.notes) : only_label(read.sequence, name);
   st.input.sequence = drop_empty_frames(std::move(seq), st.frames);
   if (st.frames.empty())
     throw InvalidInput(ErrorCode::UnknownLabel, Location{read.sequence.source}, "no contour of structure " + name,

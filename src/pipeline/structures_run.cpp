@@ -25,8 +25,8 @@ Json structure_json(const StructureRun& r) {
   }
   const Json s = Json::parse(r.run.report)["summary"];
   j["ok"] = true;
-  for (const char* key : {"volume_ml", "ed_frame", "es_frame", "edv_ml", "esv_ml", "ef_percent", "vertices", "triangles",
-                          "method"})
+  for (const char* key :
+       {"volume_ml", "ed_frame", "es_frame", "edv_ml", "esv_ml", "ef_percent", "vertices", "triangles", "method"})
     j[key] = s[key];
   // ED and ES as input frames (a structure may lack some frames).
   j["ed_frame"] = r.structure.frames[s["ed_frame"].get<std::size_t>()];
@@ -61,8 +61,8 @@ std::vector<StructureRun> reconstruct_structures(std::vector<Structure> structur
       r.error_code = static_cast<int>(e.code());
       r.error = e.what();
     }
-    if (say && r.error_code != 0) say(fmt::format("  structure {}: not written (exit code {}): {}", r.structure.name,
-                                                  r.error_code, r.error));
+    if (say && r.error_code != 0)
+      say(fmt::format("  structure {}: not written (exit code {}): {}", r.structure.name, r.error_code, r.error));
     runs.push_back(std::move(r));
   }
   return runs;

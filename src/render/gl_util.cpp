@@ -9,7 +9,9 @@
 namespace c4d {
 namespace {
 
-std::string named(const char* name, const char* what) { return (name ? std::string(name) + " " : std::string()) + what; }
+std::string named(const char* name, const char* what) {
+  return (name ? std::string(name) + " " : std::string()) + what;
+}
 
 // Throws through gl_fail with the driver's log when the `status` of shader or program `object` is
 // not set, deleting the object first.
@@ -55,8 +57,9 @@ GLuint link_program(std::initializer_list<std::pair<GLenum, const char*>> stages
 }
 
 Mat4 view_matrix(const Vec3& side, const Vec3& up, const Vec3& d, const Vec3& eye) {
-  return {float(side.x), float(up.x), float(-d.x), 0, float(side.y), float(up.y), float(-d.y), 0,
-          float(side.z), float(up.z), float(-d.z), 0, float(-dot(side, eye)), float(-dot(up, eye)), float(dot(d, eye)), 1};
+  return {
+      float(side.x), float(up.x), float(-d.x), 0, float(side.y),          float(up.y),          float(-d.y),        0,
+      float(side.z), float(up.z), float(-d.z), 0, float(-dot(side, eye)), float(-dot(up, eye)), float(dot(d, eye)), 1};
 }
 
 std::pair<Vec3, Vec3> frame_bounds(const std::vector<std::vector<Vec3>>& frames) {

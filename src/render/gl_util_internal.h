@@ -78,9 +78,9 @@ void use_program(GLuint p, const Mat4& mv, const Mat4& proj);
 
 //! Up to four frames and their weights for one time, as the vertex stages take them (`frames`, `fw`).
 struct FrameBlend {
-  GLint id[4] = {0, 0, 0, 0};    //!< frame indices
-  GLfloat w[4] = {0, 0, 0, 0};   //!< their weights (Step: one, Linear: two, Catmull-Rom: four)
-  std::size_t nearest = 0;       //!< the frame nearest in time
+  GLint id[4] = {0, 0, 0, 0};   //!< frame indices
+  GLfloat w[4] = {0, 0, 0, 0};  //!< their weights (Step: one, Linear: two, Catmull-Rom: four)
+  std::size_t nearest = 0;      //!< the frame nearest in time
 };
 
 //! The frames blended at `t_ms` (times of the frames in ms) for `mode`.

@@ -182,8 +182,8 @@ PatchRenderer::PatchRenderer() : impl_(std::make_unique<Impl>()) {
                                {GL_TESS_EVALUATION_SHADER, kEvaluation},
                                {GL_FRAGMENT_SHADER, kShadedFragment}},
                               "patch", kFailure);
-  s.line_prog = link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kLineFragment}}, "contour line",
-                             kFailure);
+  s.line_prog =
+      link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kLineFragment}}, "contour line", kFailure);
   glGenVertexArrays(1, &s.vao);
   glGenVertexArrays(1, &s.line_vao);
   glGenQueries(1, &s.query);
@@ -246,7 +246,7 @@ void PatchRenderer::load(const PatchMesh& pm) {
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   if (static_cast<std::size_t>(max_texels) < pm.displacement.size())
     fail("displacement maps need " + std::to_string(pm.displacement.size()) + " texels, the driver allows " +
-            std::to_string(max_texels) + " (use fewer base triangles or a smaller grid)");
+         std::to_string(max_texels) + " (use fewer base triangles or a smaller grid)");
 }
 
 void PatchRenderer::set_contours(const Sequence& seq) {
@@ -303,8 +303,9 @@ std::size_t PatchRenderer::draw(const PatchDrawState& st) {
     Vec3 n = s.slice_normal;
     double off = 0.0;  // plane offset relative to the centre
     if (!s.slice_offsets.empty()) {
-      slice = st.section_slice < 0 ? s.slice_offsets.size() / 2
-                                   : std::min<std::size_t>(static_cast<std::size_t>(st.section_slice), s.slice_offsets.size() - 1);
+      slice = st.section_slice < 0
+                  ? s.slice_offsets.size() / 2
+                  : std::min<std::size_t>(static_cast<std::size_t>(st.section_slice), s.slice_offsets.size() - 1);
       off = s.slice_offsets[slice] - dot(s.center, n);
     }
     // Keep the half below the plane (towards the first slices), so the cut faces the camera's side.
@@ -361,8 +362,7 @@ std::size_t PatchRenderer::draw(const PatchDrawState& st) {
     glLineWidth(3.0f);  // may be refused (forward-compatible contexts allow only 1): then thin lines
     for (const auto& [first, count] : s.loops[fr.nearest][slice]) glDrawArrays(GL_LINE_LOOP, first, count);
     glLineWidth(1.0f);
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    while (glGetError() != GL_NO_ERROR) {}
     glEnable(GL_DEPTH_TEST);
   }
   return uploaded;

@@ -14,7 +14,9 @@ namespace c4d {
 
 void write_png(const std::filesystem::path& path, const Image& image) {
   std::string bytes;
-  auto sink = [](void* ctx, void* data, int size) { static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), static_cast<std::size_t>(size)); };
+  auto sink = [](void* ctx, void* data, int size) {
+    static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
   if (!stbi_write_png_to_func(sink, &bytes, image.width, image.height, 4, image.rgba.data(), image.width * 4))
     throw IoError(ErrorCode::OutputNotWritable, {path.string()}, "PNG encoding failed", "check the image size");
   write_file_atomic(path, bytes);

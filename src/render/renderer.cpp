@@ -67,7 +67,7 @@ struct OffscreenRenderer::Impl {
   GLuint classical_prog = 0, compact_prog = 0;
   GLuint vao = 0, vbo = 0, ebo = 0, wbo = 0, tbo = 0, tex = 0;
   std::size_t index_count = 0;
-  MeshSequence frames;      // classical: all frames on the CPU
+  MeshSequence frames;  // classical: all frames on the CPU
   std::vector<float> staging;
   std::vector<double> times;  // compact
   std::size_t nc = 0;
@@ -91,9 +91,11 @@ struct OffscreenRenderer::Impl {
     const float hr = float(r * 1.05);
     if (opt.perspective) {
       const float t = hr / float(2.5 * r) * n * 1.1f;
-      proj = {n / (t * aspect), 0, 0, 0, 0, n / t, 0, 0, 0, 0, -(fa + n) / (fa - n), -1, 0, 0, -2 * fa * n / (fa - n), 0};
+      proj = {n / (t * aspect),       0, 0, 0, 0, n / t, 0, 0, 0, 0, -(fa + n) / (fa - n), -1, 0, 0,
+              -2 * fa * n / (fa - n), 0};
     } else {
-      proj = {1.0f / (hr * aspect), 0, 0, 0, 0, 1.0f / hr, 0, 0, 0, 0, -2.0f / (fa - n), 0, 0, 0, -(fa + n) / (fa - n), 1};
+      proj = {1.0f / (hr * aspect), 0, 0, 0, 0, 1.0f / hr, 0, 0, 0, 0, -2.0f / (fa - n), 0, 0, 0,
+              -(fa + n) / (fa - n), 1};
     }
   }
 
@@ -135,9 +137,11 @@ OffscreenRenderer::OffscreenRenderer(const RenderOptions& options) : impl_(std::
     EGLDeviceEXT devices[8];
     EGLint n = 0;
     if (query_devices(8, devices, &n))
-      for (EGLint i = 0; i < n; ++i) candidates.push_back(get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
+      for (EGLint i = 0; i < n; ++i)
+        candidates.push_back(get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
   }
-  if (get_platform_display) candidates.push_back(get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
+  if (get_platform_display)
+    candidates.push_back(get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
   candidates.push_back(eglGetDisplay(EGL_DEFAULT_DISPLAY));
   std::string tried;
   for (EGLDisplay d : candidates) {
@@ -152,8 +156,9 @@ OffscreenRenderer::OffscreenRenderer(const RenderOptions& options) : impl_(std::
     EGLConfig cfg = nullptr;
     EGLint ncfg = 0;
     eglChooseConfig(d, cfg_attr, &cfg, 1, &ncfg);
-    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                               EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint ctx_attr[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     EGLContext c = eglCreateContext(d, ncfg > 0 ? cfg : nullptr, EGL_NO_CONTEXT, ctx_attr);
     if (c != EGL_NO_CONTEXT && eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
       s.dpy = d;
@@ -178,8 +183,10 @@ OffscreenRenderer::OffscreenRenderer(const RenderOptions& options) : impl_(std::
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s.depth);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) fail("framebuffer incomplete");
   glEnable(GL_DEPTH_TEST);
-  s.classical_prog = link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
-  s.compact_prog = link_program({{GL_VERTEX_SHADER, kCompactVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
+  s.classical_prog =
+      link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
+  s.compact_prog =
+      link_program({{GL_VERTEX_SHADER, kCompactVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
 }
 
 OffscreenRenderer::~OffscreenRenderer() {
@@ -208,7 +215,8 @@ std::string OffscreenRenderer::description() const {
 
 void OffscreenRenderer::load_classical(const MeshSequence& seq) {
   Impl& s = *impl_;
-  if (seq.positions.empty() || seq.triangles.empty()) throw InvalidInput(ErrorCode::BadMesh, {}, "empty mesh sequence", "nothing to draw");
+  if (seq.positions.empty() || seq.triangles.empty())
+    throw InvalidInput(ErrorCode::BadMesh, {}, "empty mesh sequence", "nothing to draw");
   s.fit_camera(seq.positions);
   s.frames = seq;
   s.reset_buffers();
@@ -294,7 +302,8 @@ void OffscreenRenderer::load_compact(const CompactModel& model) {
   glGenBuffers(1, &s.ebo);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.ebo);
   s.index_count = seq.triangles.size() * 3;
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.index_count * 4), seq.triangles.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.index_count * 4), seq.triangles.data(),
+               GL_STATIC_DRAW);
   glGenBuffers(1, &s.tbo);
   glBindBuffer(GL_TEXTURE_BUFFER, s.tbo);
   glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(motion.size() * 4), motion.data(), GL_STATIC_DRAW);

@@ -67,19 +67,41 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
   auto& s = *static_cast<ViewerState*>(glfwGetWindowUserPointer(w));
   switch (key) {
     case GLFW_KEY_ESCAPE:
-    case GLFW_KEY_Q: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
-    case GLFW_KEY_SPACE: s.playing = !s.playing; break;
-    case GLFW_KEY_RIGHT: step_frame(s, +1); break;
-    case GLFW_KEY_LEFT: step_frame(s, -1); break;
+    case GLFW_KEY_Q:
+      glfwSetWindowShouldClose(w, GLFW_TRUE);
+      break;
+    case GLFW_KEY_SPACE:
+      s.playing = !s.playing;
+      break;
+    case GLFW_KEY_RIGHT:
+      step_frame(s, +1);
+      break;
+    case GLFW_KEY_LEFT:
+      step_frame(s, -1);
+      break;
     case GLFW_KEY_EQUAL:
-    case GLFW_KEY_KP_ADD: s.speed = std::min(s.speed * 1.5, 50.0); break;
+    case GLFW_KEY_KP_ADD:
+      s.speed = std::min(s.speed * 1.5, 50.0);
+      break;
     case GLFW_KEY_MINUS:
-    case GLFW_KEY_KP_SUBTRACT: s.speed = std::max(s.speed / 1.5, 0.02); break;
-    case GLFW_KEY_RIGHT_BRACKET: s.draw.level = std::min(s.draw.level + 1, 64); break;
-    case GLFW_KEY_LEFT_BRACKET: s.draw.level = std::max(s.draw.level - 1, 1); break;
-    case GLFW_KEY_W: s.draw.wireframe = !s.draw.wireframe; break;
-    case GLFW_KEY_D: s.draw.displaced = !s.draw.displaced; break;
-    case GLFW_KEY_S: s.draw.section = !s.draw.section; break;
+    case GLFW_KEY_KP_SUBTRACT:
+      s.speed = std::max(s.speed / 1.5, 0.02);
+      break;
+    case GLFW_KEY_RIGHT_BRACKET:
+      s.draw.level = std::min(s.draw.level + 1, 64);
+      break;
+    case GLFW_KEY_LEFT_BRACKET:
+      s.draw.level = std::max(s.draw.level - 1, 1);
+      break;
+    case GLFW_KEY_W:
+      s.draw.wireframe = !s.draw.wireframe;
+      break;
+    case GLFW_KEY_D:
+      s.draw.displaced = !s.draw.displaced;
+      break;
+    case GLFW_KEY_S:
+      s.draw.section = !s.draw.section;
+      break;
     case GLFW_KEY_I:
       s.draw.interpolation = s.draw.interpolation == TimeInterpolation::Linear ? TimeInterpolation::CatmullRomPeriodic
                                                                                : TimeInterpolation::Linear;
@@ -91,8 +113,11 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
         s.draw.section_slice = std::clamp(cur + (key == GLFW_KEY_PERIOD ? 1 : -1), 0, static_cast<int>(s.slices) - 1);
       }
       break;
-    case GLFW_KEY_R: s.draw.camera = s.home; break;
-    default: break;
+    case GLFW_KEY_R:
+      s.draw.camera = s.home;
+      break;
+    default:
+      break;
   }
 }
 
@@ -187,11 +212,10 @@ void run_viewer(const PatchMesh& pm, const Sequence* contours, const ViewerOptio
       ++frames;
       const double since = std::chrono::duration<double>(now - title_time).count();
       if (since >= 0.5) {
-        const std::string title =
-            fmt::format("{} | t {:.0f} ms {} x{:.2f} | level {} ({} triangles){}{}{} | {:.1f} fps", opt.title,
-                        st.t, st.playing ? "playing" : "paused", st.speed, st.draw.level, tris,
-                        st.draw.displaced ? "" : " | no maps", st.draw.wireframe ? " | wire" : "",
-                        st.draw.section ? " | section" : "", frames / since);
+        const std::string title = fmt::format(
+            "{} | t {:.0f} ms {} x{:.2f} | level {} ({} triangles){}{}{} | {:.1f} fps", opt.title, st.t,
+            st.playing ? "playing" : "paused", st.speed, st.draw.level, tris, st.draw.displaced ? "" : " | no maps",
+            st.draw.wireframe ? " | wire" : "", st.draw.section ? " | section" : "", frames / since);
         glfwSetWindowTitle(win, title.c_str());
         frames = 0;
         title_time = now;

@@ -34,9 +34,7 @@ double min_angle_deg(Vec3 a, Vec3 b, Vec3 c) {
 
 namespace {
 
-Vec3 face_normal(const std::vector<Vec3>& x, const Triangle& t) {
-  return cross(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]);
-}
+Vec3 face_normal(const std::vector<Vec3>& x, const Triangle& t) { return cross(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]); }
 
 // Triangles binned by the cells their bounding boxes touch: the candidates that a moved vertex's
 // triangles could cut through. A dense block of cells over the triangles' extent, each with its
@@ -112,8 +110,10 @@ TriangleGrid bin_triangles(const std::vector<Vec3>& x, const std::vector<Triangl
   // adds candidates, and the test on them is exact.
   for (;;) {
     g.lo[0] = g.at(all_lo.x), g.lo[1] = g.at(all_lo.y), g.lo[2] = g.at(all_lo.z);
-    g.size[0] = g.at(all_hi.x) - g.lo[0] + 1, g.size[1] = g.at(all_hi.y) - g.lo[1] + 1, g.size[2] = g.at(all_hi.z) - g.lo[2] + 1;
-    const double cells = static_cast<double>(g.size[0]) * static_cast<double>(g.size[1]) * static_cast<double>(g.size[2]);
+    g.size[0] = g.at(all_hi.x) - g.lo[0] + 1, g.size[1] = g.at(all_hi.y) - g.lo[1] + 1,
+    g.size[2] = g.at(all_hi.z) - g.lo[2] + 1;
+    const double cells =
+        static_cast<double>(g.size[0]) * static_cast<double>(g.size[1]) * static_cast<double>(g.size[2]);
     if (cells <= std::max(4096.0, 8.0 * static_cast<double>(triangles.size()))) break;
     g.cell *= 2.0;
   }
@@ -185,7 +185,8 @@ constexpr double kSliverDeg = 5.0;
 // The triangles of each vertex, in increasing order (CSR).
 struct VertexTriangles {
   std::vector<std::uint32_t> start, items;
-  VertexTriangles(std::size_t nv, const std::vector<Triangle>& triangles) : start(nv + 1, 0), items(3 * triangles.size()) {
+  VertexTriangles(std::size_t nv, const std::vector<Triangle>& triangles)
+      : start(nv + 1, 0), items(3 * triangles.size()) {
     for (const Triangle& t : triangles)
       for (std::uint32_t v : t) ++start[v + 1];
     for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
@@ -193,12 +194,13 @@ struct VertexTriangles {
     for (std::size_t f = 0; f < triangles.size(); ++f)
       for (std::uint32_t v : triangles[f]) items[fill[v]++] = static_cast<std::uint32_t>(f);
   }
-  std::span<const std::uint32_t> operator[](std::size_t v) const { return {items.data() + start[v], items.data() + start[v + 1]}; }
+  std::span<const std::uint32_t> operator[](std::size_t v) const {
+    return {items.data() + start[v], items.data() + start[v + 1]};
+  }
 };
 
-std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
-                     const VertexTriangles& ring, const std::vector<char>& fixed,
-                     const SurfaceSnap& snap, const AngleRepairOptions& options) {
+std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const VertexTriangles& ring,
+                     const std::vector<char>& fixed, const SurfaceSnap& snap, const AngleRepairOptions& options) {
   const double cos_fold = 0.5;  // a ring triangle may turn by at most 60°
   std::size_t moves = 0;
   // Active set: after the first pass, a vertex is tried again only if it or a vertex of its ring
@@ -333,8 +335,8 @@ std::size_t repair_small_angles(std::vector<Vec3>& positions, const std::vector<
   return optimise(positions, triangles, ring, frozen, snap, options);
 }
 
-std::size_t untangle(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const std::vector<char>& fixed,
-                     const SurfaceSnap& snap, int rounds) {
+std::size_t untangle(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                     const std::vector<char>& fixed, const SurfaceSnap& snap, int rounds) {
   // The full intersection test costs more than the rest of a morphed frame: it runs only where a
   // triangle is a sliver (below 15°), the mark of a crowded, folding patch.
   bool suspect = false;

@@ -153,7 +153,9 @@ class BoundaryDistance {
  private:
   int cx(double x) const { return std::clamp(static_cast<int>((x - lo_.x) / cell_), 0, nx_ - 1); }
   int cy(double y) const { return std::clamp(static_cast<int>((y - lo_.y) / cell_), 0, ny_ - 1); }
-  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i); }
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
+  }
 
   std::vector<std::array<Vec2, 2>> segments_;
   std::vector<std::vector<std::size_t>> cells_;
@@ -183,7 +185,8 @@ class GradedCriteria : public Criteria {
       const Point& pa = fh->vertex(0)->point();
       const Point& pb = fh->vertex(1)->point();
       const Point& pc = fh->vertex(2)->point();
-      std::array<double, 3> sq{CGAL::to_double(CGAL::squared_distance(pb, pc)), CGAL::to_double(CGAL::squared_distance(pc, pa)),
+      std::array<double, 3> sq{CGAL::to_double(CGAL::squared_distance(pb, pc)),
+                               CGAL::to_double(CGAL::squared_distance(pc, pa)),
                                CGAL::to_double(CGAL::squared_distance(pa, pb))};
       std::sort(sq.begin(), sq.end());
       const double l1 = sq[2], l2 = sq[1];  // the two longest squared edges
@@ -243,7 +246,9 @@ CapMesh triangulate_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle st
     const bool graded = std::isfinite(options.far_scale) && options.far_scale > 1.0;
     if (options.edge > 0 && graded)
       CGAL::refine_Delaunay_mesh_2(
-          cdt, GradedCriteria(options.edge, options.far_scale, options.near_edges, options.ramp_edges, boundary_distance), true);
+          cdt,
+          GradedCriteria(options.edge, options.far_scale, options.near_edges, options.ramp_edges, boundary_distance),
+          true);
     else if (options.edge > 0)
       CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125, options.edge * std::max(1.0, options.uniform_scale)), true);
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
@@ -333,7 +338,8 @@ LocalTriangles local_triangles(const std::vector<Triangle>& triangles) {
   for (const Triangle& t : triangles) {
     std::array<std::uint32_t, 3> local{};
     for (std::size_t k = 0; k < 3; ++k)
-      local[k] = static_cast<std::uint32_t>(std::lower_bound(out.vertices.begin(), out.vertices.end(), t[k]) - out.vertices.begin());
+      local[k] = static_cast<std::uint32_t>(std::lower_bound(out.vertices.begin(), out.vertices.end(), t[k]) -
+                                            out.vertices.begin());
     out.triangles.push_back(local);
   }
   return out;
@@ -347,7 +353,8 @@ class CapVolume {
   CapVolume(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame)
       : height_(frame.height), local_(local_triangles(triangles)) {
     for (std::uint32_t v : local_.vertices) u_.push_back(cap_height_of(positions[v], frame));
-    for (const Triangle& t : triangles) area_.push_back(projected_area(positions[t[0]], positions[t[1]], positions[t[2]]));
+    for (const Triangle& t : triangles)
+      area_.push_back(projected_area(positions[t[0]], positions[t[1]], positions[t[2]]));
     lifted_.resize(u_.size());
   }
 
@@ -392,7 +399,8 @@ double extrapolated_cap_volume(double area, double neighbour_area, double spacin
   return std::min(volume, std::clamp(max_fill, 0.0, 1.0) * area * height);
 }
 
-double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame, double target) {
+double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame,
+                double target) {
   if (frame.height <= 0.0 || triangles.empty()) return 1.0;
   CapVolume volume(positions, triangles, frame);
   if (volume(1.0) >= target) return 1.0;
@@ -433,7 +441,8 @@ Vec3 widened(const Vec3& p, const EndBand& band, double alpha) {
 // calls it 50 times). The sums run in the triangles' order, as the direct formula would.
 class BandVolume {
  public:
-  BandVolume(const std::vector<Vec3>& positions, const EndBand& band, double orientation, const std::vector<char>& movable)
+  BandVolume(const std::vector<Vec3>& positions, const EndBand& band, double orientation,
+             const std::vector<char>& movable)
       : band_(band), orientation_(orientation), local_(local_triangles(band.triangles)) {
     for (std::uint32_t v : local_.vertices) {
       p_.push_back(positions[v]);

@@ -41,14 +41,14 @@ namespace c4d {
 namespace {
 
 struct VertexInfo {
-  int id = -1;            // our own id, in order of creation (deterministic, never a pointer)
-  int lower = -1;         // output id of the lower polygon vertex here
-  int upper = -1;         // output id of the upper polygon vertex here
-  int lower_hits = 0;     // lower vertices and lower edge interiors through this point
+  int id = -1;         // our own id, in order of creation (deterministic, never a pointer)
+  int lower = -1;      // output id of the lower polygon vertex here
+  int upper = -1;      // output id of the upper polygon vertex here
+  int lower_hits = 0;  // lower vertices and lower edge interiors through this point
   int upper_hits = 0;
-  bool cat = false;       // a CAT lifting point
-  double height = 0.0;    // height of a CAT point (mm)
-  Vec2 xy;                // coordinates in double
+  bool cat = false;     // a CAT lifting point
+  double height = 0.0;  // height of a CAT point (mm)
+  Vec2 xy;              // coordinates in double
   bool on_lower() const { return lower_hits > 0; }
   bool on_upper() const { return upper_hits > 0; }
   bool shared() const { return on_lower() && on_upper(); }
@@ -94,7 +94,8 @@ EdgeKey edge_key(VertexHandle a, VertexHandle b) {
 
 void validate(const std::vector<std::vector<Vec2>>& polygons, const char* side) {
   if (polygons.empty())
-    throw InvalidInput(ErrorCode::EmptyFrame, {}, fmt::format("tile_slices_delaunay: the {} slice has no polygon", side),
+    throw InvalidInput(ErrorCode::EmptyFrame, {},
+                       fmt::format("tile_slices_delaunay: the {} slice has no polygon", side),
                        "pass at least one closed contour on each slice");
   for (std::size_t p = 0; p < polygons.size(); ++p) {
     Location where;
@@ -157,10 +158,11 @@ void insert_vertices(BandCdt& t, const Polygons& lower, const Polygons& upper) {
         if (own >= 0) {
           Location where;
           where.contour = static_cast<int>(p);
-          throw InvalidInput(ErrorCode::DegenerateContour, where,
-                             fmt::format("tile_slices_delaunay: {} polygon {} point {} ({}, {}) repeats a point of the same slice",
-                                         slice == 0 ? "lower" : "upper", p, i, q.x, q.y),
-                             "remove repeated points (also the repeated closing point) from the contours");
+          throw InvalidInput(
+              ErrorCode::DegenerateContour, where,
+              fmt::format("tile_slices_delaunay: {} polygon {} point {} ({}, {}) repeats a point of the same slice",
+                          slice == 0 ? "lower" : "upper", p, i, q.x, q.y),
+              "remove repeated points (also the repeated closing point) from the contours");
         }
         own = static_cast<int>(t.n_poly_vertices++);
         (slice == 0 ? info.lower_hits : info.upper_hits) += 1;
@@ -317,7 +319,8 @@ struct CatSurvey {
 CatSurvey survey_flat_faces(BandCdt& t, const Heights& h, const DelaunayTilingOptions& options) {
   CatSurvey s;
   for (const auto& [key, f] : sorted_band_faces(t)) {
-    const double h0 = vertex_height(f->vertex(0), h), h1 = vertex_height(f->vertex(1), h), h2 = vertex_height(f->vertex(2), h);
+    const double h0 = vertex_height(f->vertex(0), h), h1 = vertex_height(f->vertex(1), h),
+                 h2 = vertex_height(f->vertex(2), h);
     const bool flat = h0 == h1 && h1 == h2;
     int inner = 0;
     for (int i = 0; i < 3; ++i) {
@@ -489,10 +492,13 @@ void report_polygon_sides(const PolygonSides& sides, std::size_t n_lower_polygon
     const bool is_lower = p < n_lower_polygons;
     const std::size_t index = is_lower ? p : p - n_lower_polygons;
     if (sides.reversed[p] && sides.kept[p])
-      out.warnings.push_back(fmt::format("{} polygon {}: inside and outside disagree along the contour", is_lower ? "lower" : "upper", index));
+      out.warnings.push_back(fmt::format("{} polygon {}: inside and outside disagree along the contour",
+                                         is_lower ? "lower" : "upper", index));
     else if (sides.reversed[p])
-      out.warnings.push_back(fmt::format("{} polygon {} runs against the convention (outer counter-clockwise, holes clockwise); "
-                                         "the band follows its nesting", is_lower ? "lower" : "upper", index));
+      out.warnings.push_back(
+          fmt::format("{} polygon {} runs against the convention (outer counter-clockwise, holes clockwise); "
+                      "the band follows its nesting",
+                      is_lower ? "lower" : "upper", index));
   }
 }
 
@@ -521,16 +527,21 @@ void report_warnings(BandCdt& t, const CatOutcome& cat, const PolygonSides& side
                      const DelaunayTilingOptions& options, DelaunayTiling& out) {
   out.flat_triangles = cat.flat_faces;
   if (cat.flat_faces > 0)
-    out.warnings.push_back(fmt::format("{} flat triangles left after {} CAT rounds", cat.flat_faces, options.max_cat_rounds));
+    out.warnings.push_back(
+        fmt::format("{} flat triangles left after {} CAT rounds", cat.flat_faces, options.max_cat_rounds));
   if (options.split_flat_edges && !cat.flat_edges.empty())
-    out.warnings.push_back(fmt::format("{} inner edges lie on a cap after {} CAT rounds", cat.flat_edges.size(), options.max_cat_rounds));
+    out.warnings.push_back(
+        fmt::format("{} inner edges lie on a cap after {} CAT rounds", cat.flat_edges.size(), options.max_cat_rounds));
   if (cat.inconsistent) out.warnings.push_back("nesting parity is inconsistent: the contours are not closed polygons");
   report_polygon_sides(sides, n_lower_polygons, out);
   bool overlap = false;
   for (FaceHandle f : t.cdt.finite_face_handles()) overlap = overlap || (f->info().in_lower && f->info().in_upper);
-  if (!overlap) out.warnings.push_back("the projections of the two slices do not overlap: the band is two separate domes");
+  if (!overlap)
+    out.warnings.push_back("the projections of the two slices do not overlap: the band is two separate domes");
   const std::size_t bad = count_nonmanifold_edges(out.triangles, t.edges);
-  if (bad > 0) out.warnings.push_back(fmt::format("the band is not a 2-manifold at {} edges (contours touching from outside?)", bad));
+  if (bad > 0)
+    out.warnings.push_back(
+        fmt::format("the band is not a 2-manifold at {} edges (contours touching from outside?)", bad));
 }
 
 }  // namespace

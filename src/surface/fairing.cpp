@@ -32,8 +32,9 @@ using Sparse = Eigen::SparseMatrix<double>;
 // each entry summed in Eigen's order for `Lfᵀ * Lf` and `Lfᵀ * rhs` (rows of Lf in increasing order,
 // each term Lf(k, i)·Lf(k, j) or Lf(k, i)·rhs(k)): the same values to the bit, without forming Lf, its
 // transpose and the full product. The matrix goes into `a` (nf × nf), the right-hand side into `rhs`.
-void normal_equations(const std::vector<Eigen::Triplet<double>>& trip, const std::vector<std::array<double, 3>>& constant,
-                      int rows, int nf, Sparse& a, Eigen::MatrixXd& rhs) {
+void normal_equations(const std::vector<Eigen::Triplet<double>>& trip,
+                      const std::vector<std::array<double, 3>>& constant, int rows, int nf, Sparse& a,
+                      Eigen::MatrixXd& rhs) {
   std::vector<std::size_t> row_start(static_cast<std::size_t>(rows) + 1, 0);
   for (const auto& e : trip) ++row_start[static_cast<std::size_t>(e.row()) + 1];
   for (std::size_t r = 0; r < static_cast<std::size_t>(rows); ++r) row_start[r + 1] += row_start[r];
@@ -54,10 +55,12 @@ void normal_equations(const std::vector<Eigen::Triplet<double>>& trip, const std
     values.reserve(12 * static_cast<std::size_t>(nf));
     for (int j = 0; j < nf; ++j) {
       touched.clear();
-      for (std::size_t c = col_start[static_cast<std::size_t>(j)]; c < col_start[static_cast<std::size_t>(j) + 1]; ++c) {
+      for (std::size_t c = col_start[static_cast<std::size_t>(j)]; c < col_start[static_cast<std::size_t>(j) + 1];
+           ++c) {
         const auto& ej = trip[col_items[c]];
         const double y = ej.value();
-        for (std::size_t e = row_start[static_cast<std::size_t>(ej.row())]; e < row_start[static_cast<std::size_t>(ej.row()) + 1]; ++e) {
+        for (std::size_t e = row_start[static_cast<std::size_t>(ej.row())];
+             e < row_start[static_cast<std::size_t>(ej.row()) + 1]; ++e) {
           const int i = trip[e].col();
           if (i < j) continue;
           const auto ui = static_cast<std::size_t>(i);

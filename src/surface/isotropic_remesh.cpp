@@ -29,14 +29,14 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) { return (static_cast<s
 struct Remesher {
   std::vector<Vec3> x;
   std::vector<Triangle> f;
-  std::vector<std::int32_t> opp;  // per half-edge; kNone on the boundary
-  std::vector<char> con;          // per half-edge: constrained (contour) edge
+  std::vector<std::int32_t> opp;                        // per half-edge; kNone on the boundary
+  std::vector<char> con;                                // per half-edge: constrained (contour) edge
   std::vector<char> face_dead, vert_dead, locked, bnd;  // bnd: on a boundary edge (never changes)
-  std::vector<std::int32_t> out;  // per vertex: one outgoing half-edge
+  std::vector<std::int32_t> out;                        // per vertex: one outgoing half-edge
   std::vector<std::int32_t> face_hint, face_patch, vert_hint;
   const SurfaceWalk* ref = nullptr;
-  std::vector<std::int32_t> scratch, around;  // ring() output; a copy kept while scratch is reused
-  bool ring_closed = false;                   // find_halfedge's ring in scratch is a closed fan
+  std::vector<std::int32_t> scratch, around;                 // ring() output; a copy kept while scratch is reused
+  bool ring_closed = false;                                  // find_halfedge's ring in scratch is a closed fan
   std::vector<std::pair<double, std::uint64_t>> sort_spare;  // sort_pairs' buffer
 
   // Half-edge arithmetic, in unsigned arithmetic for the valid (non-negative) half-edges: a division by 3
@@ -61,7 +61,9 @@ struct Remesher {
     const std::uint32_t c = u % 3u;
     return f[u / 3u][c == 2u ? 0u : c + 1u];
   }
-  bool guarded(std::int32_t h) const { return con[static_cast<std::size_t>(h)] || opp[static_cast<std::size_t>(h)] == kNone; }
+  bool guarded(std::int32_t h) const {
+    return con[static_cast<std::size_t>(h)] || opp[static_cast<std::size_t>(h)] == kNone;
+  }
   void link(std::int32_t a, std::int32_t b) {
     if (a != kNone) opp[static_cast<std::size_t>(a)] = b;
     if (b != kNone) opp[static_cast<std::size_t>(b)] = a;
@@ -125,7 +127,8 @@ struct Remesher {
     std::vector<std::int32_t> outgoing(nh);
     {
       std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-      for (std::size_t h = 0; h < nh; ++h) outgoing[fill[from(static_cast<std::int32_t>(h))]++] = static_cast<std::int32_t>(h);
+      for (std::size_t h = 0; h < nh; ++h)
+        outgoing[fill[from(static_cast<std::int32_t>(h))]++] = static_cast<std::int32_t>(h);
     }
     auto find_directed = [&](std::uint32_t a, std::uint32_t b) {
       for (std::uint32_t k = first[a]; k < first[a + 1]; ++k)
@@ -222,8 +225,8 @@ struct Remesher {
     const std::int32_t o_wt = opp[static_cast<std::size_t>(hwt)], o_tu = opp[static_cast<std::size_t>(htu)];
     const char c_wt = con[static_cast<std::size_t>(hwt)], c_tu = con[static_cast<std::size_t>(htu)];
     f[static_cast<std::size_t>(face)] = {u, m, t};
-    const std::int32_t g = add_face({m, w, t}, face_hint[static_cast<std::size_t>(face)],
-                                    face_patch[static_cast<std::size_t>(face)]);
+    const std::int32_t g =
+        add_face({m, w, t}, face_hint[static_cast<std::size_t>(face)], face_patch[static_cast<std::size_t>(face)]);
     con[static_cast<std::size_t>(3 * face)] = con[static_cast<std::size_t>(3 * face + 1)] = 0;
     link(3 * face + 1, 3 * g + 2);  // m→t / t→m
     link(3 * face + 2, o_tu);
@@ -252,8 +255,8 @@ struct Remesher {
     const std::int32_t fa = face_of(h), fb = split_side(h, m);  // (a, m, c), (m, b, c)
     if (ho == kNone) return;
     const std::int32_t ga = face_of(ho), gb = split_side(ho, m);  // (b, m, d), (m, a, d)
-    link(3 * fa, 3 * gb);  // a→m / m→a
-    link(3 * fb, 3 * ga);  // m→b / b→m
+    link(3 * fa, 3 * gb);                                         // a→m / m→a
+    link(3 * fb, 3 * ga);                                         // m→b / b→m
   }
 
   // Calls fn(a, b, squared length) once per edge that may change (not constrained, not on a boundary).
@@ -312,7 +315,8 @@ struct Remesher {
       if (pass > 0) todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
       added_from = x.size();
       for (const auto& [negl, key] : todo) {
-        const std::int32_t h = find_halfedge(static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key & 0xffffffffu));
+        const std::int32_t h =
+            find_halfedge(static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key & 0xffffffffu));
         if (h != kNone) split(h);
       }
     }
@@ -392,7 +396,8 @@ struct Remesher {
 
   // One pass over the edges shorter than low, shortest first (only those touching a vertex marked in
   // `touched` when it is not empty); marks the vertices around each collapse in `next_touched`.
-  std::size_t collapse_short(double low, double high, const std::vector<char>& touched, std::vector<char>& next_touched) {
+  std::size_t collapse_short(double low, double high, const std::vector<char>& touched,
+                             std::vector<char>& next_touched) {
     std::size_t done = 0;
     const double low2 = low * low, high2 = high * high;
     std::vector<std::pair<double, std::uint64_t>> todo;
@@ -419,13 +424,15 @@ struct Remesher {
     // The candidates' vertices and first faces lie anywhere in the arrays: fetched a few candidates ahead.
     constexpr std::size_t kAhead = 8;
     auto fetch_vertex = [&](std::size_t n) {
-      for (const std::uint32_t v : {static_cast<std::uint32_t>(todo[n].second >> 32), static_cast<std::uint32_t>(todo[n].second)}) {
+      for (const std::uint32_t v :
+           {static_cast<std::uint32_t>(todo[n].second >> 32), static_cast<std::uint32_t>(todo[n].second)}) {
         __builtin_prefetch(&out[v]);
         __builtin_prefetch(&x[v]);
       }
     };
     auto fetch_face = [&](std::size_t n) {
-      for (const std::uint32_t v : {static_cast<std::uint32_t>(todo[n].second >> 32), static_cast<std::uint32_t>(todo[n].second)})
+      for (const std::uint32_t v :
+           {static_cast<std::uint32_t>(todo[n].second >> 32), static_cast<std::uint32_t>(todo[n].second)})
         if (const std::int32_t h = out[v]; h != kNone) {
           __builtin_prefetch(&opp[static_cast<std::size_t>(h)]);
           __builtin_prefetch(&f[static_cast<std::size_t>(h / 3)]);
@@ -434,7 +441,8 @@ struct Remesher {
     for (std::size_t n = 0; n < todo.size(); ++n) {
       if (n + kAhead < todo.size()) fetch_vertex(n + kAhead);
       if (n + kAhead / 2 < todo.size()) fetch_face(n + kAhead / 2);
-      auto a = static_cast<std::uint32_t>(todo[n].second >> 32), b = static_cast<std::uint32_t>(todo[n].second & 0xffffffffu);
+      auto a = static_cast<std::uint32_t>(todo[n].second >> 32),
+           b = static_cast<std::uint32_t>(todo[n].second & 0xffffffffu);
       if (vert_dead[a] || vert_dead[b]) continue;
       if (locked[a]) std::swap(a, b);
       if (locked[a]) continue;
@@ -668,7 +676,8 @@ bool remesh_isotropic_fast(TriangleMesh& mesh, std::vector<std::array<std::uint3
     for (int k = 0; k < 3; ++k) {
       const std::size_t h = 3 * g + static_cast<std::size_t>(k);
       if (!r.con[h]) continue;
-      const std::uint32_t a = index[t[static_cast<std::size_t>(k)]], b = index[t[static_cast<std::size_t>((k + 1) % 3)]];
+      const std::uint32_t a = index[t[static_cast<std::size_t>(k)]],
+                          b = index[t[static_cast<std::size_t>((k + 1) % 3)]];
       constrained.push_back({std::min(a, b), std::max(a, b)});
       out_fixed[a] = out_fixed[b] = 1;
     }

@@ -21,10 +21,10 @@ namespace c4d {
 namespace {
 
 struct HalfEdge {
-  std::uint32_t lo, hi;          // sorted endpoints
+  std::uint32_t lo, hi;  // sorted endpoints
   std::uint32_t tri;
   std::uint8_t corner_lo, corner_hi;  // the first corner of tri at lo, at hi
-  bool forward;                  // runs lo -> hi
+  bool forward;                       // runs lo -> hi
 };
 
 std::uint8_t corner(const Triangle& t, std::uint32_t v) { return t[0] == v ? 0 : (t[1] == v ? 1 : 2); }
@@ -53,8 +53,7 @@ std::vector<std::array<std::uint32_t, 2>> self_intersecting_pairs(const Triangle
     if (sm.add_face(vid[t[0]], vid[t[1]], vid[t[2]]) == SM::null_face()) return out;
   std::vector<std::pair<SM::Face_index, SM::Face_index>> pairs;
   CGAL::Polygon_mesh_processing::self_intersections(sm, std::back_inserter(pairs));
-  for (const auto& [a, b] : pairs)
-    out.push_back({std::min<std::uint32_t>(a, b), std::max<std::uint32_t>(a, b)});
+  for (const auto& [a, b] : pairs) out.push_back({std::min<std::uint32_t>(a, b), std::max<std::uint32_t>(a, b)});
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -64,7 +63,8 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
   const std::size_t nt = mesh.triangles.size();
   // Triangles and corners are numbered in 32 bits below (half the memory traffic of the sort and the
   // disjoint sets); such a mesh would take more than 17 GB of triangles alone.
-  if (nt > UINT32_MAX / 3) throw std::length_error("check_mesh: more than " + std::to_string(UINT32_MAX / 3) + " triangles");
+  if (nt > UINT32_MAX / 3)
+    throw std::length_error("check_mesh: more than " + std::to_string(UINT32_MAX / 3) + " triangles");
   // Half-edges grouped by their lower endpoint (a counting sort), each group then sorted by upper
   // endpoint and triangle: the order of one sort by (lo, hi, tri), in linear time.
   const std::size_t nv = mesh.positions.size();
@@ -93,7 +93,8 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
     }
   }
   for (std::size_t v = 0; v < nv; ++v)
-    std::sort(hes.begin() + static_cast<std::ptrdiff_t>(start[v]), hes.begin() + static_cast<std::ptrdiff_t>(start[v + 1]),
+    std::sort(hes.begin() + static_cast<std::ptrdiff_t>(start[v]),
+              hes.begin() + static_cast<std::ptrdiff_t>(start[v + 1]),
               [](const HalfEdge& x, const HalfEdge& y) { return x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri; });
   DisjointSets<std::uint32_t> faces(nt), corners(3 * nt);
   std::size_t edges = 0;
@@ -110,7 +111,8 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
       corners.unite(3 * t1 + hes[i].corner_lo, 3 * t2 + hes[i + 1].corner_lo);
       corners.unite(3 * t1 + hes[i].corner_hi, 3 * t2 + hes[i + 1].corner_hi);
     }
-    for (auto it = hes.begin() + static_cast<std::ptrdiff_t>(i + 1); it != hes.begin() + static_cast<std::ptrdiff_t>(j); ++it)
+    for (auto it = hes.begin() + static_cast<std::ptrdiff_t>(i + 1); it != hes.begin() + static_cast<std::ptrdiff_t>(j);
+         ++it)
       faces.unite(hes[i].tri, it->tri);
     i = j;
   }
@@ -121,7 +123,8 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = mesh.triangles[f][k];
       const std::size_t r = corners.find(3 * f + k);
-      if (first_root[v] == SIZE_MAX) first_root[v] = r;
+      if (first_root[v] == SIZE_MAX)
+        first_root[v] = r;
       else if (first_root[v] != r && !bad[v]) {
         bad[v] = 1;
         ++c.nonmanifold_vertices;
@@ -136,7 +139,8 @@ MeshCheck check_mesh(const TriangleMesh& mesh, bool self_intersections) {
   // (metrics/topology.h: the same rule as CGAL's); anything else by CGAL's test on a Surface_mesh.
   const bool clean = c.boundary_edges == 0 && c.nonmanifold_edges == 0 && c.nonmanifold_vertices == 0 &&
                      c.misoriented_edges == 0 && c.degenerate_triangles == 0;
-  if (self_intersections && nt > 0) c.self_intersects = clean ? count_self_intersections(mesh) > 0 : soup_self_intersects(mesh);
+  if (self_intersections && nt > 0)
+    c.self_intersects = clean ? count_self_intersections(mesh) > 0 : soup_self_intersects(mesh);
   return c;
 }
 

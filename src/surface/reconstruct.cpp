@@ -49,11 +49,11 @@ const double kUniformCapScale = std::sqrt(2.0);
 
 // One contour of the frame, in canonical form.
 struct Node {
-  int slice = 0;                      // index into the sorted slices
-  int input_index = 0;                // index in the input Slice::contours
-  int depth = 0;                      // nesting depth within its slice
-  std::vector<Vec2> poly;             // resampled, canonical (CCW for even depth, CW for odd)
-  std::vector<std::uint32_t> chain;   // global vertex ids of poly
+  int slice = 0;                     // index into the sorted slices
+  int input_index = 0;               // index in the input Slice::contours
+  int depth = 0;                     // nesting depth within its slice
+  std::vector<Vec2> poly;            // resampled, canonical (CCW for even depth, CW for odd)
+  std::vector<std::uint32_t> chain;  // global vertex ids of poly
   bool linked_up = false, linked_down = false;
 };
 
@@ -86,7 +86,8 @@ CanonicalFrame canonical_frame(const Sequence& sub) {
     for (const Contour& c : s.contours) {
       const std::size_t n = c.points.size();
       for (std::size_t k = 0; k < n; ++k) {
-        const double w = 0.5 * (distance(c.points[k], c.points[(k + 1) % n]) + distance(c.points[k], c.points[(k + n - 1) % n]));
+        const double w =
+            0.5 * (distance(c.points[k], c.points[(k + 1) % n]) + distance(c.points[k], c.points[(k + n - 1) % n]));
         pts.push_back({to_plane(pl, c.points[k]), w});
       }
     }
@@ -118,26 +119,6 @@ CanonicalFrame canonical_frame(const Sequence& sub) {
 double snap(double x) { return std::ldexp(std::nearbyint(std::ldexp(x, 30)), -30); }
 Vec2 snap(Vec2 p) { return {snap(p.x), snap(p.y)}; }
 
-// Closest point to p on the closed polygon `poly`.
-Vec2 polygon_closest(Vec2 p, const std::vector<Vec2>& poly) {
-  double best = std::numeric_limits<double>::infinity();
-  Vec2 at = p;
-  for (std::size_t k = 0; k < poly.size(); ++k) {
-    const Vec2 a = poly[k], ab = poly[(k + 1) % poly.size()] - a;
-    const double l2 = dot(ab, ab);
-    const double t = l2 > 0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-    const Vec2 q = a + t * ab;
-    if (const double d = norm(p - q); d < best) {
-      best = d;
-      at = q;
-    }
-  }
-  return at;
-}
-
-// Distance from p to the closed polygon `poly` (its edges).
-double polygon_distance(Vec2 p, const std::vector<Vec2>& poly) { return norm(p - polygon_closest(p, poly)); }
-
 // Contours of one slice that touch or nearly touch (a section through a saddle: two contours meeting
 // at one point) are moved apart to `gap`: each point closer than `gap` to another contour moves by
 // half the shortfall, away from it (from a shared point: along its own normal, into its region for
@@ -153,7 +134,8 @@ std::size_t separate_touching(std::vector<Node>& nodes, const std::vector<int>& 
       Node& b = nodes[static_cast<std::size_t>(slice_nodes[j])];
       auto box = [](const std::vector<Vec2>& poly) {
         std::array<double, 4> r{poly[0].x, poly[0].y, poly[0].x, poly[0].y};
-        for (const Vec2& p : poly) r = {std::min(r[0], p.x), std::min(r[1], p.y), std::max(r[2], p.x), std::max(r[3], p.y)};
+        for (const Vec2& p : poly)
+          r = {std::min(r[0], p.x), std::min(r[1], p.y), std::max(r[2], p.x), std::max(r[3], p.y)};
         return r;
       };
       const auto ba = box(a.poly), bb = box(b.poly);
@@ -164,7 +146,7 @@ std::size_t separate_touching(std::vector<Node>& nodes, const std::vector<int>& 
         std::vector<Vec2> out(self.poly.size(), Vec2{0, 0});
         const std::size_t n = self.poly.size();
         for (std::size_t k = 0; k < n; ++k) {
-          const Vec2 p = self.poly[k], q = polygon_closest(p, other.poly);
+          const Vec2 p = self.poly[k], q = closest_on_polyline(p, other.poly);
           const double d = norm(p - q);
           if (d >= gap) continue;
           Vec2 dir = d > 1e-9 ? (1.0 / d) * (p - q) : Vec2{0, 0};
@@ -447,7 +429,7 @@ CapMesh cap_of_slice(const std::vector<std::vector<Vec2>>& loops, CapStyle style
 struct FrameWork {
   explicit FrameWork(const detail::SurfaceParams& options) : opt(options) {}
   const detail::SurfaceParams& opt;
-  Location loc;                                  // the file and frame, for messages
+  Location loc;  // the file and frame, for messages
   SurfaceReport rep;
   Sequence sub;                                  // the chosen structure's contours as a one-frame sequence
   Frame ff;                                      // those contours, slices by increasing offset
@@ -458,17 +440,17 @@ struct FrameWork {
   Plane world;                                   // canonical frame of the first slice in world space
   std::vector<Node> nodes;                       // one per resampled contour
   std::vector<SliceInfo> slices;
-  std::vector<std::vector<int>> node_of;         // per slice: filtered index -> node
-  std::uint32_t contour_vertices = 0;            // vertices [0, this) are contour vertices
-  PairLinks pair_links;                          // per slice pair: linked node pairs
-  std::vector<Triangle> to_remesh;               // band triangles left for remeshing (branchings)
+  std::vector<std::vector<int>> node_of;  // per slice: filtered index -> node
+  std::uint32_t contour_vertices = 0;     // vertices [0, this) are contour vertices
+  PairLinks pair_links;                   // per slice pair: linked node pairs
+  std::vector<Triangle> to_remesh;        // band triangles left for remeshing (branchings)
   RemeshEngine engine = RemeshEngine::Cgal;
-  double lowest = 0.0, highest = 0.0;            // the caps' reach below the first and above the last slice
-  std::vector<char> fixed;                       // per vertex: kept in place by fairing and remeshing
-  std::vector<char> keep_shape;                  // per vertex: a dome vertex that keeps its shape
-  std::vector<double> row_scale;                 // per vertex: the fairing row's scale (coarse caps)
-  std::vector<char> scale_aware;                 // per vertex: its fairing term is scale-aware (ring caps)
-  std::vector<CapFill> fills;                    // the Rounded caps to fill towards the sections' trend
+  double lowest = 0.0, highest = 0.0;  // the caps' reach below the first and above the last slice
+  std::vector<char> fixed;             // per vertex: kept in place by fairing and remeshing
+  std::vector<char> keep_shape;        // per vertex: a dome vertex that keeps its shape
+  std::vector<double> row_scale;       // per vertex: the fairing row's scale (coarse caps)
+  std::vector<char> scale_aware;       // per vertex: its fairing term is scale-aware (ring caps)
+  std::vector<CapFill> fills;          // the Rounded caps to fill towards the sections' trend
 };
 
 // Step 1: the structure to build (SurfaceOptions::label, or the only one present).
@@ -517,8 +499,10 @@ void filter_frame(FrameWork& fw, const Sequence& seq, const Frame& f, const std:
         fs.contours.push_back(s->contours[c]);
         original_index.back().push_back(static_cast<int>(c));
       }
-    if (fs.contours.empty()) original_index.pop_back();
-    else ff.slices.push_back(std::move(fs));
+    if (fs.contours.empty())
+      original_index.pop_back();
+    else
+      ff.slices.push_back(std::move(fs));
   }
   if (ff.slices.empty())
     throw InvalidInput(ErrorCode::EmptyFrame, loc, "frame has no contour to build a surface from",
@@ -529,7 +513,6 @@ void filter_frame(FrameWork& fw, const Sequence& seq, const Frame& f, const std:
   fw.links = intra_frame_connections(sub, 0, copt);
 
   fw.frame2d = canonical_frame(sub);
-
 }
 
 // Step 3: canonical, resampled contours and their vertices, in a local frame.
@@ -593,16 +576,16 @@ void canonical_contours(FrameWork& fw) {
       nodes.push_back(std::move(n));
     }
     if (const std::size_t moved = separate_touching(nodes, si.nodes, opt.min_contour_gap); moved > 0)
-      rep.warnings.push_back(fmt::format("slice {}: contours touch or come closer than {} mm; {} points moved apart "
-                                         "by at most half that",
-                                         si.slice->id, opt.min_contour_gap, moved));
+      rep.warnings.push_back(
+          fmt::format("slice {}: contours touch or come closer than {} mm; {} points moved apart "
+                      "by at most half that",
+                      si.slice->id, opt.min_contour_gap, moved));
     for (int id : si.nodes)
       for (const Vec2& p : nodes[static_cast<std::size_t>(id)].poly)
         nodes[static_cast<std::size_t>(id)].chain.push_back(b.add(from_plane(si.plane, p)));
   }
   rep.contours = static_cast<int>(nodes.size());
   fw.contour_vertices = static_cast<std::uint32_t>(b.positions.size());
-
 }
 
 // Step 4: the links as node pairs, per slice pair (and in the report).
@@ -634,14 +617,13 @@ void link_nodes(FrameWork& fw, int frame) {
     nodes[sa < sb ? na : nb].linked_up = true;
     nodes[sa < sb ? nb : na].linked_down = true;
   }
-
 }
 
 // Step 5a: the paper's tiling of one linked group of a slice pair: the constrained Delaunay triangulation of
 // the projected symmetric difference with chordal-axis lifting points. False (with a warning) where it fails;
 // the band tiling is used there.
-bool tile_delaunay(FrameWork& fw, std::size_t s, const std::vector<int>& lower, const std::vector<int>& upper, double gap,
-                   std::vector<Triangle>& dest) {
+bool tile_delaunay(FrameWork& fw, std::size_t s, const std::vector<int>& lower, const std::vector<int>& upper,
+                   double gap, std::vector<Triangle>& dest) {
   auto& rep = fw.rep;
   auto& ff = fw.ff;
   auto& b = fw.b;
@@ -687,7 +669,7 @@ bool tile_delaunay(FrameWork& fw, std::size_t s, const std::vector<int>& lower, 
   }
   if (!tiled)
     rep.warnings.push_back("slices " + std::to_string(ff.slices[s].id) + "-" + std::to_string(ff.slices[s + 1].id) +
-                             ": Delaunay tiling not possible (" + problem + "); band tiling used");
+                           ": Delaunay tiling not possible (" + problem + "); band tiling used");
   return tiled;
 }
 
@@ -712,7 +694,7 @@ void branch_groups(const std::vector<Node>& nodes, const std::vector<int>& lower
     double best = std::numeric_limits<double>::infinity();
     int g = -1;
     for (std::size_t k = 0; k < many.size(); ++k) {
-      const double d = polygon_distance(p, nodes[many[k]].poly);
+      const double d = polyline_distance(p, nodes[many[k]].poly);
       if (d < best) {
         best = d;
         g = static_cast<int>(k);
@@ -795,7 +777,6 @@ void tile_walls(FrameWork& fw) {
       dest.insert(dest.end(), tris.begin(), tris.end());
     }
   }
-
 }
 
 // Step 6: bands without rows (branchings) remeshed on their own; their borders are contours, which
@@ -854,7 +835,6 @@ void remesh_branch_bands(FrameWork& fw) {
     }
     for (const Triangle& t : part.triangles) b.triangles.push_back({to_global[t[0]], to_global[t[1]], to_global[t[2]]});
   }
-
 }
 
 // Step 7: caps on contours without a partner above (top) or below (bottom).
@@ -915,7 +895,8 @@ void add_caps(FrameWork& fw) {
         // Rings (a contour with holes) keep their faired dome: its height is bound by the ring's width,
         // and a straight extrapolation of the ring's area overshoots.
         // Other Rounded caps are filled to the volume the sections' trend extrapolates (fill_cap).
-        const bool fillable = opt.caps == CapStyle::Rounded && !lone && opt.cap_max_fill > 0 && group.size() == 1 && !lone_hole;
+        const bool fillable =
+            opt.caps == CapStyle::Rounded && !lone && opt.cap_max_fill > 0 && group.size() == 1 && !lone_hole;
         // A coarser interior far from the contour: fewer unknowns for the fairing (CapOptions::far_scale).
         // Only on filled caps, whose volume the fill sets: a faired dome over a graded mesh comes out
         // lower (the umbrella Laplacian weighs a coarse region's curvature more).
@@ -980,7 +961,6 @@ void add_caps(FrameWork& fw) {
         ++rep.caps;
       }
     }
-
 }
 
 // Step 8: the tiled surface faired and smoothed (free vertices), held within the caps' reach, its
@@ -1022,8 +1002,10 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
       fo.scale_aware = std::move(scale_aware);
       fo.reference_edge = opt.edge;
     }
-    if (fair_thin_plate(mesh, fixed, keep_shape, fo)) moved = true;
-    else rep.warnings.push_back("fairing failed (singular system); the surface is left unsmoothed");
+    if (fair_thin_plate(mesh, fixed, keep_shape, fo))
+      moved = true;
+    else
+      rep.warnings.push_back("fairing failed (singular system); the surface is left unsmoothed");
   }
   // No overshoot beyond the caps' height (at most half a spacing past the end contours).
   if (moved)
@@ -1060,7 +1042,8 @@ std::vector<std::array<std::uint32_t, 2>> remesh_final(FrameWork& fw, TriangleMe
     for (const auto& e : constrained) lengths.push_back(distance(mesh.positions[e[0]], mesh.positions[e[1]]));
     double target = opt.edge;
     if (!lengths.empty()) {
-      std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+      std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2),
+                       lengths.end());
       target = std::clamp(1.1 * lengths[lengths.size() / 2], 0.5 * opt.edge, opt.edge);
     }
     RemeshOptions mo;
@@ -1097,7 +1080,6 @@ void repair_angles(FrameWork& fw, TriangleMesh& mesh, const std::vector<std::arr
     if (flip_edges_delaunay(mesh, constrained, fo) > 0)
       repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
   }
-
 }
 
 // Step 11: unused vertices dropped, back to world space, the final checks into the report.

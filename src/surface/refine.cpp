@@ -219,14 +219,16 @@ RoundEdges sorted_edges(const std::vector<Triangle>& tris, std::size_t nv) {
     for (int k = 0; k < 3; ++k)
       if (tri[k] < tri[(k + 1) % 3]) r.edges[r.bucket[tri[k]]++] = {tri[k], tri[(k + 1) % 3]};
   for (std::size_t v = 0, from = 0; v < nv; ++v) {  // bucket[v] now ends vertex v's edges
-    std::sort(r.edges.begin() + static_cast<std::ptrdiff_t>(from), r.edges.begin() + static_cast<std::ptrdiff_t>(r.bucket[v]));
+    std::sort(r.edges.begin() + static_cast<std::ptrdiff_t>(from),
+              r.edges.begin() + static_cast<std::ptrdiff_t>(r.bucket[v]));
     from = r.bucket[v];
   }
   return r;
 }
 
 // Marks edge u-w for the full test at its positions from `from_position` on.
-void mark(const RoundEdges& r, std::vector<char>& candidate, std::uint32_t u, std::uint32_t w, std::size_t from_position) {
+void mark(const RoundEdges& r, std::vector<char>& candidate, std::uint32_t u, std::uint32_t w,
+          std::size_t from_position) {
   const Edge key{std::min(u, w), std::max(u, w)};
   const std::size_t first = key.first == 0 ? std::size_t{0} : static_cast<std::size_t>(r.bucket[key.first - 1]);
   const auto from = r.edges.begin() + static_cast<std::ptrdiff_t>(first);
@@ -267,8 +269,8 @@ bool wants_flip(const OwnerTable& o, const std::vector<Vec3>& x, std::uint32_t a
 }
 
 // One round over every edge in sorted order, flipping where wanted; returns the number of flips.
-std::size_t flip_round(TriangleMesh& mesh, OwnerTable& o, const FixedEdges& fixed, bool plain, const FlipOptions& options,
-                       double cos_dihedral) {
+std::size_t flip_round(TriangleMesh& mesh, OwnerTable& o, const FixedEdges& fixed, bool plain,
+                       const FlipOptions& options, double cos_dihedral) {
   auto& tris = mesh.triangles;
   const auto& x = mesh.positions;
   std::size_t flipped_now = 0;
@@ -301,7 +303,8 @@ std::size_t flip_round(TriangleMesh& mesh, OwnerTable& o, const FixedEdges& fixe
       for (int k = 0; k < 3; ++k) set_owner(o, tris[t][k], tris[t][(k + 1) % 3], t);
     // The edges whose triangles changed get the full test where they come later in this round.
     if (plain)
-      for (const auto& [u, w] : {Edge{a, b}, Edge{b, c}, Edge{c, a}, Edge{a, d}, Edge{d, b}, Edge{c, d}}) mark(r, candidate, u, w, i + 1);
+      for (const auto& [u, w] : {Edge{a, b}, Edge{b, c}, Edge{c, a}, Edge{a, d}, Edge{d, b}, Edge{c, d}})
+        mark(r, candidate, u, w, i + 1);
     ++flipped_now;
   }
   return flipped_now;

@@ -13,7 +13,6 @@
 namespace c4d {
 namespace {
 
-
 Vec2 area_centroid(const std::vector<Vec2>& p) {
   double a = 0.0;
   Vec2 c{};

@@ -132,8 +132,10 @@ BandPath band_path_from(const std::vector<std::uint32_t>& lower, const std::vect
   std::size_t i = n, j = m;
   out.states.push_back({i, j});
   while (i > 0 || j > 0) {
-    if (from[i * W + j] == 1) --i;
-    else --j;
+    if (from[i * W + j] == 1)
+      --i;
+    else
+      --j;
     out.states.push_back({i, j});
   }
   std::reverse(out.states.begin(), out.states.end());
@@ -212,8 +214,10 @@ std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const
   for (std::size_t k = path.states.size() - 1; k > 0; --k) {
     const auto [i1, j1] = path.states[k];
     const auto [i, j] = path.states[k - 1];
-    if (i1 != i) out.push_back({L(i), L(i1), U(j)});
-    else out.push_back({L(i), U(j1), U(j)});
+    if (i1 != i)
+      out.push_back({L(i), L(i1), U(j)});
+    else
+      out.push_back({L(i), U(j1), U(j)});
   }
   return out;
 }

@@ -25,7 +25,7 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/errors.h"
-#include "vertex_normals_internal.h"
+#include "contour4d/core/normals.h"
 
 namespace c4d {
 namespace {
@@ -55,7 +55,9 @@ std::uint64_t get_varint(const std::vector<std::uint8_t>& in, std::size_t& pos) 
   bad("overlong varint in correction stream", "the file is damaged: pack it again");
 }
 
-std::uint64_t zigzag(std::int64_t v) { return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63); }
+std::uint64_t zigzag(std::int64_t v) {
+  return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63);
+}
 std::int64_t unzigzag(std::uint64_t v) { return static_cast<std::int64_t>(v >> 1) ^ -static_cast<std::int64_t>(v & 1); }
 
 void validate(const MeshSequence& seq) {
@@ -74,8 +76,8 @@ void validate(const MeshSequence& seq) {
     for (std::uint32_t i : t)
       if (i >= n) bad("triangle index " + std::to_string(i) + " out of range", "the triangle list is corrupt");
   if (!seq.times_ms.empty() && seq.times_ms.size() != seq.positions.size())
-    bad("times_ms has " + std::to_string(seq.times_ms.size()) + " entries for " +
-            std::to_string(seq.positions.size()) + " frames",
+    bad("times_ms has " + std::to_string(seq.times_ms.size()) + " entries for " + std::to_string(seq.positions.size()) +
+            " frames",
         "give one time per frame");
 }
 
@@ -276,7 +278,8 @@ std::vector<std::uint32_t> control_vertices(const std::vector<Vec3>& p0, const s
 
 // Control displacements relative to the decoded frame 0 (`base`), int16 per coordinate. Sets
 // m.motion_step and m.motion.
-void encode_motion(CompactModel& m, const std::vector<std::vector<Vec3>>& P, const std::vector<Vec3>& base, double tolerance) {
+void encode_motion(CompactModel& m, const std::vector<std::vector<Vec3>>& P, const std::vector<Vec3>& base,
+                   double tolerance) {
   const std::size_t nf = P.size(), nc = m.control.size();
   double maxd = 0.0;
   for (std::size_t f = 0; f < nf; ++f)
@@ -287,7 +290,8 @@ void encode_motion(CompactModel& m, const std::vector<std::vector<Vec3>>& P, con
   for (std::size_t c = 0; c < nc; ++c)
     for (std::size_t f = 0; f < nf; ++f)
       for (int i = 0; i < 3; ++i)
-        qm[(c * nf + f) * 4 + i] = static_cast<std::int16_t>(std::lround((P[f][m.control[c]][i] - base[m.control[c]][i]) / m.motion_step));
+        qm[(c * nf + f) * 4 + i] =
+            static_cast<std::int16_t>(std::lround((P[f][m.control[c]][i] - base[m.control[c]][i]) / m.motion_step));
   m.motion.resize(meshopt_encodeVertexBufferBound(nc * nf, 8));
   m.motion.resize(meshopt_encodeVertexBuffer(m.motion.data(), m.motion.size(), qm.data(), nc * nf, 8));
 }
@@ -399,59 +403,63 @@ ControlWeights control_weights(const std::vector<Vec3>& positions, const std::ve
                                int neighbours) {
   ControlWeights w;
   const std::size_t nc = control.size();
-  w.k = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::clamp(neighbours, 1, kMaxCompactNeighbours)), nc));
+  w.k = static_cast<int>(
+      std::min<std::size_t>(static_cast<std::size_t>(std::clamp(neighbours, 1, kMaxCompactNeighbours)), nc));
   const std::size_t k = static_cast<std::size_t>(w.k);
   w.ids.assign(positions.size() * k, 0);
   w.weights.assign(positions.size() * k, 0.0f);
   if (k == 0) return w;
   std::vector<Vec3> cp(nc);
   for (std::size_t c = 0; c < nc; ++c) cp[c] = positions[control[c]];
-  tbb::parallel_for(std::size_t{0}, positions.size(), std::size_t{256}, [&](std::size_t v0) {
-    const std::size_t v1 = std::min(positions.size(), v0 + 256);
-    std::vector<std::pair<double, std::uint32_t>> best;
-    for (std::size_t v = v0; v < v1; ++v) {
-      const Vec3 x = positions[v];
-      best.clear();
-      // k nearest control vertices, ties broken by id (deterministic).
-      for (std::size_t c = 0; c < nc; ++c) {
-        const Vec3 e = cp[c] - x;
-        const std::pair<double, std::uint32_t> cand{dot(e, e), static_cast<std::uint32_t>(c)};
-        if (best.size() < k) {
-          best.push_back(cand);
-          std::push_heap(best.begin(), best.end());
-        } else if (cand < best.front()) {
-          std::pop_heap(best.begin(), best.end());
-          best.back() = cand;
-          std::push_heap(best.begin(), best.end());
+  tbb::parallel_for(
+      std::size_t{0}, positions.size(), std::size_t{256},
+      [&](std::size_t v0) {
+        const std::size_t v1 = std::min(positions.size(), v0 + 256);
+        std::vector<std::pair<double, std::uint32_t>> best;
+        for (std::size_t v = v0; v < v1; ++v) {
+          const Vec3 x = positions[v];
+          best.clear();
+          // k nearest control vertices, ties broken by id (deterministic).
+          for (std::size_t c = 0; c < nc; ++c) {
+            const Vec3 e = cp[c] - x;
+            const std::pair<double, std::uint32_t> cand{dot(e, e), static_cast<std::uint32_t>(c)};
+            if (best.size() < k) {
+              best.push_back(cand);
+              std::push_heap(best.begin(), best.end());
+            } else if (cand < best.front()) {
+              std::pop_heap(best.begin(), best.end());
+              best.back() = cand;
+              std::push_heap(best.begin(), best.end());
+            }
+          }
+          std::sort(best.begin(), best.end());
+          if (best.front().first == 0.0) {  // x is a control vertex: carry it exactly
+            w.ids[v * k] = best.front().second;
+            w.weights[v * k] = 1.0f;
+            for (std::size_t j = 1; j < k; ++j) w.ids[v * k + j] = best[j].second;
+            continue;
+          }
+          const double h2 = 0.25 * best.back().first + 1e-12;
+          Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
+          std::array<Eigen::Vector4d, kMaxCompactNeighbours> b;
+          std::array<double, kMaxCompactNeighbours> wt{};
+          for (std::size_t j = 0; j < k; ++j) {
+            const Vec3 e = cp[best[j].second] - x;
+            b[j] = Eigen::Vector4d(1.0, e.x, e.y, e.z);
+            wt[j] = 1.0 / (best[j].first + h2);
+            M += wt[j] * b[j] * b[j].transpose();
+          }
+          // A small ridge on the gradient: control vertices near a surface are almost coplanar.
+          const double ridge = 1e-3 * (M(1, 1) + M(2, 2) + M(3, 3)) / 3.0 + 1e-300;
+          for (int i = 1; i < 4; ++i) M(i, i) += ridge;
+          const Eigen::Vector4d a = M.ldlt().solve(Eigen::Vector4d::UnitX());
+          for (std::size_t j = 0; j < k; ++j) {
+            w.ids[v * k + j] = best[j].second;
+            w.weights[v * k + j] = static_cast<float>(wt[j] * a.dot(b[j]));
+          }
         }
-      }
-      std::sort(best.begin(), best.end());
-      if (best.front().first == 0.0) {  // x is a control vertex: carry it exactly
-        w.ids[v * k] = best.front().second;
-        w.weights[v * k] = 1.0f;
-        for (std::size_t j = 1; j < k; ++j) w.ids[v * k + j] = best[j].second;
-        continue;
-      }
-      const double h2 = 0.25 * best.back().first + 1e-12;
-      Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
-      std::array<Eigen::Vector4d, kMaxCompactNeighbours> b;
-      std::array<double, kMaxCompactNeighbours> wt{};
-      for (std::size_t j = 0; j < k; ++j) {
-        const Vec3 e = cp[best[j].second] - x;
-        b[j] = Eigen::Vector4d(1.0, e.x, e.y, e.z);
-        wt[j] = 1.0 / (best[j].first + h2);
-        M += wt[j] * b[j] * b[j].transpose();
-      }
-      // A small ridge on the gradient: control vertices near a surface are almost coplanar.
-      const double ridge = 1e-3 * (M(1, 1) + M(2, 2) + M(3, 3)) / 3.0 + 1e-300;
-      for (int i = 1; i < 4; ++i) M(i, i) += ridge;
-      const Eigen::Vector4d a = M.ldlt().solve(Eigen::Vector4d::UnitX());
-      for (std::size_t j = 0; j < k; ++j) {
-        w.ids[v * k + j] = best[j].second;
-        w.weights[v * k + j] = static_cast<float>(wt[j] * a.dot(b[j]));
-      }
-    }
-  }, tbb::simple_partitioner());
+      },
+      tbb::simple_partitioner());
   return w;
 }
 
@@ -529,7 +537,8 @@ MeshSequence compact_decode(const CompactModel& m) {
       const std::uint64_t code = get_varint(corr, pos);
       const bool full = !surface || (code & 1) != 0;
       v += surface ? code >> 1 : code;
-      if (v >= m.vertex_count) bad("correction vertex out of range", "the file is damaged: pack it again", static_cast<int>(f));
+      if (v >= m.vertex_count)
+        bad("correction vertex out of range", "the file is damaged: pack it again", static_cast<int>(f));
       if (!full) {
         const double r = static_cast<double>(unzigzag(get_varint(corr, pos))) * m.residual_step;
         seq.positions[f][v] += r * normals[v];

@@ -23,7 +23,7 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/errors.h"
-#include "vertex_normals_internal.h"
+#include "contour4d/core/normals.h"
 
 namespace c4d {
 namespace {
@@ -129,7 +129,8 @@ bool line_hit(const TriangleGrid& g, const std::vector<Vec3>& p, const std::vect
     const Vec3 q = o + (-search + 2.0 * search * k / std::max(steps, 1)) * n;
     const std::size_t c = g.id(g.clampi((q.x - g.lo.x) / g.cell, g.nx), g.clampi((q.y - g.lo.y) / g.cell, g.ny),
                                g.clampi((q.z - g.lo.z) / g.cell, g.nz));
-    if (std::find(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(nc), c) == cells.begin() + static_cast<std::ptrdiff_t>(nc))
+    if (std::find(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(nc), c) ==
+        cells.begin() + static_cast<std::ptrdiff_t>(nc))
       cells[nc++] = c;
   }
   bool hit = false;
@@ -193,7 +194,8 @@ PatchMesh build_patch_mesh(const MeshSequence& fine, const PatchOptions& opt) {
     for (int c = 0; c < 3; ++c) fp[3 * v + c] = static_cast<float>(fine.positions[0][v][c]);
   std::vector<std::uint32_t> simple(idx.size());
   if (opt.base_triangles * 3 < idx.size())
-    simple.resize(meshopt_simplify(simple.data(), idx.data(), idx.size(), fp.data(), nv, 12, opt.base_triangles * 3, 1.0f, 0, nullptr));
+    simple.resize(meshopt_simplify(simple.data(), idx.data(), idx.size(), fp.data(), nv, 12, opt.base_triangles * 3,
+                                   1.0f, 0, nullptr));
   else
     simple = idx;
   PatchMesh pm;
@@ -301,7 +303,8 @@ PatchMesh build_patch_mesh(const MeshSequence& fine, const PatchOptions& opt) {
 
 MeshSequence tessellate_patches(const PatchMesh& pm, int level) {
   if (level < 1 || level > 64)
-    throw InvalidInput(ErrorCode::Usage, {}, "tessellation level " + std::to_string(level) + " out of range", "use 1..64");
+    throw InvalidInput(ErrorCode::Usage, {}, "tessellation level " + std::to_string(level) + " out of range",
+                       "use 1..64");
   MeshSequence out;
   out.times_ms = pm.times_ms;
   // Lattice point (t, i, j) -> shared vertex: corners by base vertex, edge points by (edge, step).
@@ -320,22 +323,32 @@ MeshSequence tessellate_patches(const PatchMesh& pm, int level) {
       return a < b ? std::array<std::uint64_t, 3>{1, (std::uint64_t{a} << 32) | b, steps_from_a}
                    : std::array<std::uint64_t, 3>{1, (std::uint64_t{b} << 32) | a, L - steps_from_a};
     };
-    if (i == 0 && j == 0) key = {0, tri[0], 0};
-    else if (i == level) key = {0, tri[1], 0};
-    else if (j == level) key = {0, tri[2], 0};
-    else if (j == 0) key = edge(tri[0], tri[1], static_cast<std::uint64_t>(i));
-    else if (i == 0) key = edge(tri[0], tri[2], static_cast<std::uint64_t>(j));
-    else if (k == 0) key = edge(tri[1], tri[2], static_cast<std::uint64_t>(j));
-    else key = {2, t, (static_cast<std::uint64_t>(i) << 32) | static_cast<std::uint64_t>(j)};
+    if (i == 0 && j == 0)
+      key = {0, tri[0], 0};
+    else if (i == level)
+      key = {0, tri[1], 0};
+    else if (j == level)
+      key = {0, tri[2], 0};
+    else if (j == 0)
+      key = edge(tri[0], tri[1], static_cast<std::uint64_t>(i));
+    else if (i == 0)
+      key = edge(tri[0], tri[2], static_cast<std::uint64_t>(j));
+    else if (k == 0)
+      key = edge(tri[1], tri[2], static_cast<std::uint64_t>(j));
+    else
+      key = {2, t, (static_cast<std::uint64_t>(i) << 32) | static_cast<std::uint64_t>(j)};
     auto [it, fresh] = ids.emplace(key, static_cast<std::uint32_t>(samples.size()));
-    if (fresh) samples.push_back({static_cast<std::uint32_t>(t), static_cast<double>(i) / level, static_cast<double>(j) / level});
+    if (fresh)
+      samples.push_back(
+          {static_cast<std::uint32_t>(t), static_cast<double>(i) / level, static_cast<double>(j) / level});
     return it->second;
   };
   for (std::size_t t = 0; t < pm.triangles.size(); ++t)
     for (int j = 0; j < level; ++j)
       for (int i = 0; i + j < level; ++i) {
         out.triangles.push_back({vertex(t, i, j), vertex(t, i + 1, j), vertex(t, i, j + 1)});
-        if (i + j + 2 <= level) out.triangles.push_back({vertex(t, i + 1, j), vertex(t, i + 1, j + 1), vertex(t, i, j + 1)});
+        if (i + j + 2 <= level)
+          out.triangles.push_back({vertex(t, i + 1, j), vertex(t, i + 1, j + 1), vertex(t, i, j + 1)});
       }
   out.positions.resize(pm.positions.size());
   for (std::size_t f = 0; f < pm.positions.size(); ++f) {

@@ -14,7 +14,8 @@ namespace c4d {
 namespace {
 
 void check_times(const std::vector<double>& times) {
-  if (times.empty()) throw InvalidInput(ErrorCode::BadMesh, {}, "the sequence has no frames", "reconstruct a 4D mesh first");
+  if (times.empty())
+    throw InvalidInput(ErrorCode::BadMesh, {}, "the sequence has no frames", "reconstruct a 4D mesh first");
   for (std::size_t i = 1; i < times.size(); ++i)
     if (!(times[i] > times[i - 1]))
       throw InvalidInput(ErrorCode::BadMesh, {{}, -1, static_cast<int>(i)},
@@ -95,7 +96,8 @@ std::vector<Vec3> interpolate_positions(const MeshSequence& seq, double t, TimeI
 }
 
 MeshSequence resample_sequence(const MeshSequence& seq, std::size_t frames, TimeInterpolation mode, double period_ms) {
-  if (frames == 0) throw InvalidInput(ErrorCode::Usage, {}, "cannot resample to 0 frames", "pass --resample N with N >= 1");
+  if (frames == 0)
+    throw InvalidInput(ErrorCode::Usage, {}, "cannot resample to 0 frames", "pass --resample N with N >= 1");
   std::vector<double> times = seq.times_ms;
   if (times.empty())
     for (std::size_t f = 0; f < seq.positions.size(); ++f) times.push_back(static_cast<double>(f));

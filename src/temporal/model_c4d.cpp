@@ -18,8 +18,8 @@ namespace {
 
 constexpr char kMagic[8] = {'C', '4', 'D', 'M', 'O', 'D', 'E', 'L'};
 constexpr std::size_t kHeader = kModelC4dHeaderBytes;
-constexpr std::uint32_t kFlagSurface = 1u;     // bit 0: surface corrections (CompactError::Surface)
-constexpr std::uint32_t kFlagZstd = 2u;        // bit 1: the stored payload is one zstd frame
+constexpr std::uint32_t kFlagSurface = 1u;  // bit 0: surface corrections (CompactError::Surface)
+constexpr std::uint32_t kFlagZstd = 2u;     // bit 1: the stored payload is one zstd frame
 // Every zstd block yields at most ZSTD_BLOCKSIZE_MAX bytes and takes at least 4 (3-byte header + 1
 // byte of an RLE block), so a frame of n bytes cannot hold more than this many bytes per byte of it.
 constexpr std::uint64_t kMaxZstdRatio = ZSTD_BLOCKSIZE_MAX / 4;
@@ -42,19 +42,23 @@ Buffer decompress_payload(std::string_view stored, const std::string& name) {
   if (content == ZSTD_CONTENTSIZE_UNKNOWN) damaged(name, "the zstd frame of the payload does not declare its size");
   if (content > kModelC4dMaxPayload)
     throw IoError(ErrorCode::Parse, {name},
-                  "the zstd frame declares a payload of " + std::to_string(content) + " bytes, more than this build reads (" +
-                      std::to_string(kModelC4dMaxPayload) + ")",
+                  "the zstd frame declares a payload of " + std::to_string(content) +
+                      " bytes, more than this build reads (" + std::to_string(kModelC4dMaxPayload) + ")",
                   "the file is damaged or not from `contour4d pack`: run `contour4d pack` again");
   const std::size_t frame = ZSTD_findFrameCompressedSize(stored.data(), stored.size());
-  if (ZSTD_isError(frame)) damaged(name, std::string("the compressed payload is not a valid zstd frame (") + ZSTD_getErrorName(frame) + ")");
+  if (ZSTD_isError(frame))
+    damaged(name, std::string("the compressed payload is not a valid zstd frame (") + ZSTD_getErrorName(frame) + ")");
   if (frame != stored.size())
-    damaged(name, "the compressed payload has " + std::to_string(stored.size() - frame) + " bytes after its zstd frame");
+    damaged(name,
+            "the compressed payload has " + std::to_string(stored.size() - frame) + " bytes after its zstd frame");
   if (content > static_cast<std::uint64_t>(stored.size()) * kMaxZstdRatio)
     damaged(name, "the zstd frame declares " + std::to_string(content) + " bytes, impossible in " +
                       std::to_string(stored.size()) + " compressed bytes");
-  Buffer out{std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(content)), static_cast<std::size_t>(content)};
+  Buffer out{std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(content)),
+             static_cast<std::size_t>(content)};
   const std::size_t got = ZSTD_decompress(out.data.get(), out.size, stored.data(), stored.size());
-  if (ZSTD_isError(got)) damaged(name, std::string("the compressed payload does not decompress (") + ZSTD_getErrorName(got) + ")");
+  if (ZSTD_isError(got))
+    damaged(name, std::string("the compressed payload does not decompress (") + ZSTD_getErrorName(got) + ")");
   if (got != out.size)
     damaged(name, "the compressed payload decompresses to " + std::to_string(got) + " bytes, its frame declares " +
                       std::to_string(out.size));
@@ -185,13 +189,15 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
     throw IoError(ErrorCode::Format, {name}, "not a contour4d model file (bad magic)",
                   "pass a model.c4d written by `contour4d pack`");
   if (bytes.size() < kHeader)
-    throw IoError(ErrorCode::Parse, {name}, "truncated model file (header of " + std::to_string(bytes.size()) + " of " +
-                      std::to_string(kHeader) + " bytes)",
+    throw IoError(ErrorCode::Parse, {name},
+                  "truncated model file (header of " + std::to_string(bytes.size()) + " of " + std::to_string(kHeader) +
+                      " bytes)",
                   "the file is incomplete: run `contour4d pack` again");
   Reader h{bytes, 8, name};
   const std::uint32_t version = h.u32();
   if (version < 1 || version > kModelC4dVersion)
-    throw IoError(ErrorCode::Format, {name}, "model.c4d version " + std::to_string(version) + " is not supported (this build reads 1 to " +
+    throw IoError(ErrorCode::Format, {name},
+                  "model.c4d version " + std::to_string(version) + " is not supported (this build reads 1 to " +
                       std::to_string(kModelC4dVersion) + ")",
                   "pack the 4D mesh again with this contour4d");
   const std::uint32_t flags = h.u32();
@@ -202,14 +208,16 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
   const std::uint64_t size = h.u(8);
   const std::uint64_t sum = h.u(8);
   if (size != bytes.size() - kHeader)
-    throw IoError(ErrorCode::Parse, {name}, "payload is " + std::to_string(bytes.size() - kHeader) + " bytes, header says " + std::to_string(size),
-                  "the file is truncated or padded: run `contour4d pack` again");
+    throw IoError(
+        ErrorCode::Parse, {name},
+        "payload is " + std::to_string(bytes.size() - kHeader) + " bytes, header says " + std::to_string(size),
+        "the file is truncated or padded: run `contour4d pack` again");
   const std::string_view stored = bytes.substr(kHeader);
-  if (fnv1a64(stored) != sum)
-    damaged(name, "checksum mismatch");
+  if (fnv1a64(stored) != sum) damaged(name, "checksum mismatch");
   Buffer decompressed;
   if (flags & kFlagZstd) decompressed = decompress_payload(stored, name);
-  const std::string_view payload = (flags & kFlagZstd) ? std::string_view(decompressed.data.get(), decompressed.size) : stored;
+  const std::string_view payload =
+      (flags & kFlagZstd) ? std::string_view(decompressed.data.get(), decompressed.size) : stored;
   Reader r{payload, 0, name};
   CompactModel m;
   m.error = (flags & kFlagSurface) ? CompactError::Surface : CompactError::Vertex;
@@ -225,27 +233,25 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
   r.need(static_cast<std::size_t>(m.frame_count) * 8);
   for (std::uint32_t f = 0; f < m.frame_count; ++f) m.times_ms.push_back(r.f64());
   const std::uint32_t nc = r.u32();
-  if (nc > m.vertex_count)
-    damaged(name, "more control vertices than vertices");
+  if (nc > m.vertex_count) damaged(name, "more control vertices than vertices");
   std::uint64_t id = 0;
   for (std::uint32_t i = 0; i < nc; ++i) {
     const std::uint64_t gap = r.varint();  // checked before adding, so a huge gap cannot wrap around
     if (gap >= m.vertex_count) damaged(name, "control vertex id out of range");
     id = (i == 0 ? 0 : id + 1) + gap;
-    if (id >= m.vertex_count)
-      damaged(name, "control vertex id out of range");
+    if (id >= m.vertex_count) damaged(name, "control vertex id out of range");
     m.control.push_back(static_cast<std::uint32_t>(id));
   }
   m.indices = r.block();
   m.positions = r.block();
   m.motion = r.block();
   for (std::uint32_t f = 0; f < m.frame_count; ++f) m.corrections.push_back(r.block());
-  if (r.pos != payload.size())
-    damaged(name, "trailing bytes after the last frame");
+  if (r.pos != payload.size()) damaged(name, "trailing bytes after the last frame");
   return m;
 }
 
-void write_model_c4d(const std::filesystem::path& path, const CompactModel& model, const ModelC4dWriteOptions& options) {
+void write_model_c4d(const std::filesystem::path& path, const CompactModel& model,
+                     const ModelC4dWriteOptions& options) {
   write_file_atomic(path, serialize_model_c4d(model, options));
 }
 

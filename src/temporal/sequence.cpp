@@ -18,7 +18,8 @@ namespace c4d {
 
 MeshSequence to_mesh_sequence(const MeshFrames& frames, const std::string& source) {
   if (frames.meshes.empty())
-    throw InvalidInput(ErrorCode::BadMesh, {source}, "no mesh frames", "pass a folder written by `contour4d reconstruct`");
+    throw InvalidInput(ErrorCode::BadMesh, {source}, "no mesh frames",
+                       "pass a folder written by `contour4d reconstruct`");
   MeshSequence seq;
   seq.triangles = frames.meshes[0].triangles;
   for (std::size_t f = 0; f < frames.meshes.size(); ++f) {
@@ -48,11 +49,11 @@ MeshSequence load_mesh_sequence(const std::filesystem::path& path) {
 MeshSequence synthetic_beating_mesh(int subdivisions, std::size_t frames) {
   // Icosahedron, then midpoint subdivision projected to the unit sphere.
   const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> p = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  std::vector<Triangle> t = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                             {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                             {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  std::vector<Vec3> p = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<Triangle> t = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                             {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (Vec3& v : p) v = normalized(v);
   for (int s = 0; s < subdivisions; ++s) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
@@ -82,11 +83,11 @@ MeshSequence synthetic_beating_mesh(int subdivisions, std::size_t frames) {
   for (std::size_t f = 0; f < frames; ++f) {
     const double phase = static_cast<double>(f) / static_cast<double>(frames);  // 0..1 over the cycle
     // Cardiac-like radius factor: fast ejection to end-systole at 35 %, then filling.
-    const double ejection = phase < 0.35 ? 0.5 - 0.5 * std::cos(pi * phase / 0.35)
-                                         : 0.5 + 0.5 * std::cos(pi * (phase - 0.35) / 0.65);
-    const double radial = 1.0 - 0.12 * ejection;   // ~30 % volume change
+    const double ejection =
+        phase < 0.35 ? 0.5 - 0.5 * std::cos(pi * phase / 0.35) : 0.5 + 0.5 * std::cos(pi * (phase - 0.35) / 0.65);
+    const double radial = 1.0 - 0.12 * ejection;  // ~30 % volume change
     const double axial = 1.0 - 0.06 * ejection;
-    const double twist = 0.25 * ejection;         // rad at the apex/base extremes
+    const double twist = 0.25 * ejection;  // rad at the apex/base extremes
     const double sway = 2.0 * std::sin(2.0 * pi * phase);
     std::vector<Vec3> pos(p.size());
     for (std::size_t v = 0; v < p.size(); ++v) {

@@ -22,7 +22,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.contour_types = {"SAX_LV_ENDOCARDIAL", "SAX_LV_EPICARDIAL"};
   try {
     c4d::parse_gpfile_texts({frame, frame}, info, "fuzz", options);
-  } catch (const c4d::Error&) {
-  }
+  } catch (const c4d::Error&) {}
   return 0;
 }

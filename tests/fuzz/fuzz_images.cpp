@@ -16,8 +16,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   static const char* ext[] = {".nii", ".nii.gz", ".nrrd", ".mha"};
-  const std::filesystem::path file = std::filesystem::temp_directory_path() /
-                                     ("c4d_fuzz_images_" + std::to_string(::getpid()) + ext[data[0] % 4]);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("c4d_fuzz_images_" + std::to_string(::getpid()) + ext[data[0] % 4]);
   {
     std::ofstream out(file, std::ios::binary);
     out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
@@ -29,8 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::size_t voxels = 0;
     for (const auto& v : s.frames) voxels += v.labels.size();
     if (voxels <= (1u << 20)) (void)c4d::extract_mask_contours(s);
-  } catch (const c4d::Error&) {
-  }
+  } catch (const c4d::Error&) {}
   std::error_code ec;
   std::filesystem::remove(file, ec);
   return 0;

@@ -42,8 +42,7 @@ void parse_and_round_trip(const std::string& bytes) {
     fast.level = 1;  // the format does not depend on the level; level 19 would slow the fuzzer down
     if (c4d::serialize_model_c4d(c4d::parse_model_c4d(c4d::serialize_model_c4d(m, fast), "roundtrip.c4d"), raw) != out)
       __builtin_trap();
-  } catch (const c4d::Error&) {
-  }
+  } catch (const c4d::Error&) {}
 }
 
 }  // namespace

@@ -64,13 +64,15 @@ void mutate(std::vector<std::uint8_t>& d, std::mt19937_64& rng) {
       case 3:  // insert random bytes
         if (n < (1u << 20)) {
           const std::size_t at = n ? rng() % n : 0, len = 1 + rng() % 8;
-          for (std::size_t k = 0; k < len; ++k) d.insert(d.begin() + static_cast<std::ptrdiff_t>(at), static_cast<std::uint8_t>(rng()));
+          for (std::size_t k = 0; k < len; ++k)
+            d.insert(d.begin() + static_cast<std::ptrdiff_t>(at), static_cast<std::uint8_t>(rng()));
         }
         break;
       case 4:  // copy a chunk elsewhere
         if (n > 2) {
           const std::size_t from = rng() % n, len = 1 + rng() % std::min<std::size_t>(64, n - from), to = rng() % n;
-          std::vector<std::uint8_t> chunk(d.begin() + static_cast<std::ptrdiff_t>(from), d.begin() + static_cast<std::ptrdiff_t>(from + len));
+          std::vector<std::uint8_t> chunk(d.begin() + static_cast<std::ptrdiff_t>(from),
+                                          d.begin() + static_cast<std::ptrdiff_t>(from + len));
           d.insert(d.begin() + static_cast<std::ptrdiff_t>(to), chunk.begin(), chunk.end());
         }
         break;

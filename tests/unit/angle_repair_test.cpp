@@ -106,7 +106,8 @@ TEST(AngleRepair, GoodMeshIsLeftAlone) {
   const auto before = m.positions;
   c4d::AngleRepairOptions o;
   o.target_deg = 40;
-  EXPECT_EQ(c4d::repair_small_angles(m.positions, m.triangles, boundary(6), [](std::uint32_t, Vec3 p) { return p; }, o),
+  EXPECT_EQ(c4d::repair_small_angles(
+                m.positions, m.triangles, boundary(6), [](std::uint32_t, Vec3 p) { return p; }, o),
             0u);
   for (std::size_t v = 0; v < m.positions.size(); ++v) EXPECT_TRUE(m.positions[v] == before[v]);
 }

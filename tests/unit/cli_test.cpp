@@ -41,7 +41,8 @@ TEST(Cli, EverySubcommandHelpHasExamples) {
   for (const char* sub : {"reconstruct", "extract", "evaluate", "phantom"}) {
     const Result r = run(std::string(sub) + " --help");
     EXPECT_EQ(r.code, 0) << sub;
-    EXPECT_NE(r.out.find("contour4d " + std::string(sub)), std::string::npos) << sub << " help has no example:\n" << r.out;
+    EXPECT_NE(r.out.find("contour4d " + std::string(sub)), std::string::npos) << sub << " help has no example:\n"
+                                                                              << r.out;
   }
 }
 
@@ -83,7 +84,8 @@ TEST(Cli, FailedCheckWritesNothingAndHasItsOwnExitCode) {
   EXPECT_NE(r.out.find("frame 1: volume"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("nothing was written"), std::string::npos) << r.out;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
-  const Result kept = run("reconstruct " + in + " --frame 1 --volume-tolerance 0 -o " + dir + "/out --keep-failed " + dir + "/failed");
+  const Result kept =
+      run("reconstruct " + in + " --frame 1 --volume-tolerance 0 -o " + dir + "/out --keep-failed " + dir + "/failed");
   EXPECT_EQ(kept.code, 26) << kept.out;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/failed/FAILED.txt"));
@@ -169,7 +171,7 @@ TEST(Cli, EveryStructureInOneRun) {
       ASSERT_EQ(s["mass_g"].size(), s["volume_ml"].size());
       const double mass = s["mass_g"][0].get<double>();
       EXPECT_NEAR(mass, 1.05 * s["volume_ml"][0].get<double>(), 1e-3);
-      EXPECT_GT(mass, 40.0);   // an adult left ventricle's myocardium: tens to a few hundred grams
+      EXPECT_GT(mass, 40.0);  // an adult left ventricle's myocardium: tens to a few hundred grams
       EXPECT_LT(mass, 400.0);
     }
   }

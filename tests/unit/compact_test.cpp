@@ -66,7 +66,8 @@ MeshSequence noisy_beating(int subdivisions, std::size_t frames) {
 double max_error(const MeshSequence& in, const MeshSequence& out, const std::vector<std::uint32_t>& order) {
   double e = 0.0;
   for (std::size_t f = 0; f < in.positions.size(); ++f)
-    for (std::size_t v = 0; v < order.size(); ++v) e = std::max(e, distance(out.positions[f][v], in.positions[f][order[v]]));
+    for (std::size_t v = 0; v < order.size(); ++v)
+      e = std::max(e, distance(out.positions[f][v], in.positions[f][order[v]]));
   return e;
 }
 
@@ -129,7 +130,8 @@ TEST(Compact, WithoutReorderKeepsIds) {
     EXPECT_EQ(a, b) << t;
   }
   for (std::size_t f = 0; f < seq.positions.size(); ++f)
-    for (std::size_t v = 0; v < seq.positions[f].size(); ++v) EXPECT_LE(distance(out.positions[f][v], seq.positions[f][v]), opt.tolerance);
+    for (std::size_t v = 0; v < seq.positions[f].size(); ++v)
+      EXPECT_LE(distance(out.positions[f][v], seq.positions[f][v]), opt.tolerance);
 }
 
 TEST(Compact, RigidMotionInvariantError) {
@@ -295,10 +297,10 @@ TEST(CompactFile, ReadsVersionTwoAndRejectsNewFlagsInOldVersions) {
   EXPECT_EQ(v1.corrections, m.corrections);
   const std::string zstored = stored_payload(serialize_model_c4d(m));
   expect_same_model(parse_model_c4d(with_header(3, 3, zstored)), m);
-  EXPECT_EQ(parse_error(with_header(2, 3, zstored)), ErrorCode::Format);   // zstd flag in version 2
+  EXPECT_EQ(parse_error(with_header(2, 3, zstored)), ErrorCode::Format);  // zstd flag in version 2
   EXPECT_EQ(parse_error(with_header(2, 2, payload)), ErrorCode::Format);
-  EXPECT_EQ(parse_error(with_header(1, 1, payload)), ErrorCode::Format);   // no flags in version 1
-  EXPECT_EQ(parse_error(with_header(3, 4, payload)), ErrorCode::Format);   // unknown bit 2
+  EXPECT_EQ(parse_error(with_header(1, 1, payload)), ErrorCode::Format);  // no flags in version 1
+  EXPECT_EQ(parse_error(with_header(3, 4, payload)), ErrorCode::Format);  // unknown bit 2
   EXPECT_EQ(parse_error(with_header(3, 0x80000000u, payload)), ErrorCode::Format);
   EXPECT_EQ(parse_error(with_header(0, 0, payload)), ErrorCode::Format);
   EXPECT_EQ(parse_error(with_header(4, 0, payload)), ErrorCode::Format);
@@ -516,7 +518,8 @@ TEST(DisplacementMap, SamplesLieOnTheFineSurface) {
   const MeshSequence tess = tessellate_patches(pm, 3);
   EXPECT_EQ(tess.triangles.size(), pm.triangles.size() * 9);
   // Closed base mesh: V - E + F = 2 with shared edge vertices (E = 3F/2).
-  const long long F = static_cast<long long>(tess.triangles.size()), V = static_cast<long long>(tess.positions[0].size());
+  const long long F = static_cast<long long>(tess.triangles.size()),
+                  V = static_cast<long long>(tess.positions[0].size());
   EXPECT_EQ(V - 3 * F / 2 + F, 2);
   EXPECT_THROW(build_patch_mesh(seq, PatchOptions{80, 0, 4.0}), InvalidInput);
 }

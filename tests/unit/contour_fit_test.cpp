@@ -74,7 +74,8 @@ TEST(ContourFit, CommutesWithRigidMotion) {
   for (const Vec3& p : ring) moved_ring.push_back(rigid(p));
   fit_to_contours(a.positions, a.triangles, {ring}, {});
   fit_to_contours(b.positions, b.triangles, {moved_ring}, {});
-  for (std::size_t v = 0; v < a.positions.size(); ++v) EXPECT_NEAR(distance(rigid(a.positions[v]), b.positions[v]), 0, 1e-6) << v;
+  for (std::size_t v = 0; v < a.positions.size(); ++v)
+    EXPECT_NEAR(distance(rigid(a.positions[v]), b.positions[v]), 0, 1e-6) << v;
 }
 
 // The closest points of an earlier call (sample_triangles) only start the search: a warm call fits as a
@@ -110,15 +111,18 @@ TEST(ContourFit, SearchesWithoutEarlierAnswersFindTheClosestPoints) {
   // Samples on three contours far apart, some a millimetre off the surface: each search starts from the
   // answer of the sample before it (fit_to_points), yet finds the closest point of the whole surface, and
   // the answers do not depend on the thread count.
-  std::vector<Vec3> samples = contour_fit_samples(
-      {circle(std::sqrt(400.0 - 36.0) + 0.3, 6.0), circle(std::sqrt(400.0 - 169.0) - 1.0, -13.0), circle(8.0, 19.0, 40)}, 0.2);
+  std::vector<Vec3> samples =
+      contour_fit_samples({circle(std::sqrt(400.0 - 36.0) + 0.3, 6.0), circle(std::sqrt(400.0 - 169.0) - 1.0, -13.0),
+                           circle(8.0, 19.0, 40)},
+                          0.2);
   ASSERT_GT(samples.size(), 300u);  // several blocks of searches
   const TriangleMesh m = sphere();
   double truth = 0;
   for (const Vec3& s : samples) {
     double best = 1e300;
     for (const Triangle& t : m.triangles)
-      best = std::min(best, distance(s, closest_on_triangle(s, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])));
+      best =
+          std::min(best, distance(s, closest_on_triangle(s, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])));
     truth = std::max(truth, best);
   }
   ContourFitOptions measure;

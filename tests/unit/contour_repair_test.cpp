@@ -46,9 +46,7 @@ bool has(const std::vector<ContourRepair>& log, const std::string& kind) {
 }
 
 // The repaired stack must be one build_sequence accepts.
-void expect_valid(const std::vector<RawContour>& contours) {
-  EXPECT_NO_THROW(build_sequence(contours, 1, {}, "test"));
-}
+void expect_valid(const std::vector<RawContour>& contours) { EXPECT_NO_THROW(build_sequence(contours, 1, {}, "test")); }
 
 TEST(ContourRepair, CleanStackUntouched) {
   std::vector<RawContour> c = clean_stack();
@@ -117,8 +115,8 @@ TEST(ContourRepair, SmallLoopRemovedLargestLoopKept) {
 TEST(ContourRepair, SpikeAndDoubledBackTracingRemoved) {
   std::vector<RawContour> c = clean_stack();
   std::vector<Vec3>& p = c[2].contour.points;
-  p.insert(p.begin() + 5, p[4] * 1.8);                 // a spike 16 mm out
-  p.insert(p.begin() + 30, {p[31], p[32], p[31]});      // traced forward and back over two points
+  p.insert(p.begin() + 5, p[4] * 1.8);              // a spike 16 mm out
+  p.insert(p.begin() + 30, {p[31], p[32], p[31]});  // traced forward and back over two points
   const auto log = repair_contours(c);
   EXPECT_TRUE(has(log, "spike"));
   std::vector<Vec2> q;
@@ -139,10 +137,10 @@ TEST(ContourRepair, TooFewPointsDropped) {
 
 TEST(ContourRepair, SlicesOnOnePlaneMergedLaterWins) {
   std::vector<RawContour> c = clean_stack();
-  c.push_back(raw(0, 1, circle(10, 8, 40), 3));       // frame 0 would now have two contours on slice 1 ...
+  c.push_back(raw(0, 1, circle(10, 8, 40), 3));  // frame 0 would now have two contours on slice 1 ...
   c.pop_back();
-  c.push_back(raw(0, 7, circle(21, 8.01, 64), 3));    // ... no: a re-acquisition of slice 1's plane as slice 7
-  c.push_back(raw(1, 1, circle(22, 8, 64), 0));       // frame 1 has only the old id
+  c.push_back(raw(0, 7, circle(21, 8.01, 64), 3));  // ... no: a re-acquisition of slice 1's plane as slice 7
+  c.push_back(raw(1, 1, circle(22, 8, 64), 0));     // frame 1 has only the old id
   c.push_back(raw(1, 0, circle(20, 0, 60), 1));
   EXPECT_THROW(build_sequence(c, 2, {}, "test"), InvalidInput);  // today: exit 19
   const auto log = repair_contours(c);

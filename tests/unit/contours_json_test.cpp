@@ -134,8 +134,9 @@ TEST(ContoursJson, ContourErrorsNameLineFrameAndContour) {
 }
 
 TEST(ContoursJson, OverflowIsNonFiniteWithLine) {
-  const std::string text = "{\"format\": \"contour4d-contours\", \"version\": 1, \"frames\": [\n"
-                           "{\"contours\": [{\"slice\": 0, \"points\": [[0,0,0],[1e999,0,0],[0,1,0]]}]}]}";
+  const std::string text =
+      "{\"format\": \"contour4d-contours\", \"version\": 1, \"frames\": [\n"
+      "{\"contours\": [{\"slice\": 0, \"points\": [[0,0,0],[1e999,0,0],[0,1,0]]}]}]}";
   std::string msg;
   EXPECT_EQ(code_of(text, &msg), ErrorCode::NonFinite);
   EXPECT_NE(msg.find("line 2"), std::string::npos) << msg;
@@ -156,8 +157,8 @@ TEST(ContoursJson, EveryTruncatedPrefixFailsCleanly) {
     const ErrorCode c = code_of(prefix);
     // Trailing whitespace aside, every proper prefix is incomplete JSON.
     if (full.find_first_not_of(" \n", n) == std::string::npos) continue;
-    EXPECT_TRUE(c == ErrorCode::Parse || c == ErrorCode::EmptyFile) << "prefix of " << n << " bytes gave "
-                                                                    << static_cast<int>(c);
+    EXPECT_TRUE(c == ErrorCode::Parse || c == ErrorCode::EmptyFile)
+        << "prefix of " << n << " bytes gave " << static_cast<int>(c);
   }
 }
 

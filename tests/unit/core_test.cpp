@@ -59,7 +59,8 @@ TEST(Contour, SamplingStepsEvenlyAlongTheClosedPolygon) {
   const std::vector<Vec3> square{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   const auto s = sample_closed_polyline(square, 0.2);
   EXPECT_EQ(s.size(), 20u);
-  for (std::size_t i = 0; i < s.size(); ++i) EXPECT_NEAR(distance(s[i], s[(i + 1) % s.size()]) , 0.2, 0.2 * (1 - std::sqrt(0.5)) + 1e-9);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    EXPECT_NEAR(distance(s[i], s[(i + 1) % s.size()]), 0.2, 0.2 * (1 - std::sqrt(0.5)) + 1e-9);
 }
 
 TEST(Contour, SelfIntersectionDetection) {

@@ -24,7 +24,8 @@ using Polygons = std::vector<std::vector<Vec2>>;
 constexpr double kPi = std::numbers::pi;
 
 // n points on an ellipse (semi-axes a, b, rotated by rot), counter-clockwise unless cw.
-std::vector<Vec2> ellipse(double cx, double cy, double a, double b, double rot, int n, bool cw = false, double phase = 0.0) {
+std::vector<Vec2> ellipse(double cx, double cy, double a, double b, double rot, int n, bool cw = false,
+                          double phase = 0.0) {
   std::vector<Vec2> p;
   for (int i = 0; i < n; ++i) {
     const double t = phase + 2.0 * kPi * i / n;
@@ -34,7 +35,9 @@ std::vector<Vec2> ellipse(double cx, double cy, double a, double b, double rot, 
   if (cw) std::reverse(p.begin(), p.end());
   return p;
 }
-std::vector<Vec2> circle(double cx, double cy, double r, int n, bool cw = false) { return ellipse(cx, cy, r, r, 0.0, n, cw); }
+std::vector<Vec2> circle(double cx, double cy, double r, int n, bool cw = false) {
+  return ellipse(cx, cy, r, r, 0.0, n, cw);
+}
 
 double signed_area(const Polygons& polygons) {
   double a = 0.0;

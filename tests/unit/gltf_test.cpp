@@ -5,14 +5,66 @@
 
 #include <tiny_gltf.h>
 
+#include <cstring>
+
 #include "contour4d/temporal/sequence.h"
 
 namespace c4d {
 namespace {
 
-TEST(Gltf, LoadsBackWithMorphTargetsAndAnimation) {
+tinygltf::Model load(const std::string& glb) {
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  EXPECT_TRUE(loader.LoadBinaryFromMemory(&m, &err, &warn, reinterpret_cast<const unsigned char*>(glb.data()),
+                                          static_cast<unsigned>(glb.size()), ""))
+      << err;
+  return m;
+}
+
+// A float VEC3 of accessor `acc`, vertex v.
+Vec3 vec3(const tinygltf::Model& m, int acc, std::size_t v) {
+  const tinygltf::Accessor& a = m.accessors[acc];
+  EXPECT_EQ(a.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+  const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
+  const std::size_t stride = bv.byteStride ? bv.byteStride : 12;
+  float f[3];
+  std::memcpy(f, m.buffers[bv.buffer].data.data() + bv.byteOffset + a.byteOffset + v * stride, sizeof f);
+  return {f[0], f[1], f[2]};
+}
+
+// The default file: plain floats every reader loads (no extension), normals on the base and every target;
+// frame f is the base plus target f (mm after LPS -> Y-up), its normals unit length.
+TEST(Gltf, PlainFileHasFloatPositionsNormalsAndNoExtension) {
   const MeshSequence seq = synthetic_beating_mesh(3, 10);
-  const std::string glb = gltf_glb_bytes(seq);
+  const tinygltf::Model m = load(gltf_glb_bytes(seq));
+  EXPECT_TRUE(m.extensionsRequired.empty());
+  EXPECT_TRUE(m.extensionsUsed.empty());
+  const tinygltf::Primitive& prim = m.meshes.at(0).primitives.at(0);
+  ASSERT_EQ(prim.targets.size(), seq.positions.size());
+  const int pa = prim.attributes.at("POSITION"), na = prim.attributes.at("NORMAL");
+  EXPECT_EQ(m.accessors[pa].minValues.size(), 3u);
+  EXPECT_TRUE(m.nodes.at(0).scale.empty() && m.nodes.at(0).translation.empty());
+  double worst = 0.0, worst_normal = 0.0;
+  for (std::size_t f = 0; f < seq.positions.size(); f += 2) {
+    const auto& target = prim.targets[f];
+    EXPECT_EQ(m.accessors[target.at("POSITION")].minValues.size(), 3u);
+    for (std::size_t v = 0; v < seq.positions[f].size(); v += 13) {
+      const Vec3 g = 1000.0 * (vec3(m, pa, v) + vec3(m, target.at("POSITION"), v));
+      const Vec3 p = seq.positions[f][v];
+      worst = std::max(worst, distance(g, Vec3{p.x, p.z, -p.y}));
+      worst_normal = std::max(worst_normal, std::abs(norm(vec3(m, na, v) + vec3(m, target.at("NORMAL"), v)) - 1.0));
+    }
+  }
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(worst_normal, 1e-5);
+}
+
+TEST(Gltf, QuantizedLoadsBackWithMorphTargetsAndAnimation) {
+  const MeshSequence seq = synthetic_beating_mesh(3, 10);
+  GltfOptions quantized;
+  quantized.quantized = true;
+  const std::string glb = gltf_glb_bytes(seq, quantized);
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   std::string err, warn;

@@ -98,11 +98,14 @@ TEST(GpFile, MissingSliceInfoNamesFolderAndFile) {
 
 TEST(GpFile, ErrorsNameTheFrameFileAndLine) {
   const std::string info =
-      "a.dcm\tsliceID: \t2\tImagePositionPatient\t0\t0\t0\tImageOrientationPatient\t1\t0\t0\t0\t1\t0\tPixelSpacing\t1\t1\n";
-  const std::string good = "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
-                           "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n0\t9\t0\tSAX_LV_ENDOCARDIAL\t2\n";
-  const std::string bad = "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
-                          "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n0\t9\tzz\tSAX_LV_ENDOCARDIAL\t2\n";
+      "a.dcm\tsliceID: "
+      "\t2\tImagePositionPatient\t0\t0\t0\tImageOrientationPatient\t1\t0\t0\t0\t1\t0\tPixelSpacing\t1\t1\n";
+  const std::string good =
+      "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
+      "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n0\t9\t0\tSAX_LV_ENDOCARDIAL\t2\n";
+  const std::string bad =
+      "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
+      "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n0\t9\tzz\tSAX_LV_ENDOCARDIAL\t2\n";
   try {
     parse_gpfile_texts({good, bad}, info, "dir");
     FAIL();
@@ -110,8 +113,9 @@ TEST(GpFile, ErrorsNameTheFrameFileAndLine) {
     EXPECT_EQ(e.code(), ErrorCode::Parse);
     EXPECT_NE(std::string(e.what()).find("dir/GPFile_001.txt: line 4"), std::string::npos) << e.what();
   }
-  const std::string degenerate = "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
-                                 "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n";
+  const std::string degenerate =
+      "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
+      "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n";
   GpFileOptions strict;
   strict.repair = false;
   try {
@@ -119,26 +123,27 @@ TEST(GpFile, ErrorsNameTheFrameFileAndLine) {
     FAIL();
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::DegenerateContour);
-    EXPECT_NE(std::string(e.what()).find("dir/GPFile_001.txt: line 2, frame 1, slice 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("dir/GPFile_001.txt: line 2, frame 1, slice 2"), std::string::npos)
+        << e.what();
   }
 }
 
 TEST(GpFile, EveryTruncatedPrefixFailsCleanly) {
   const std::string info =
-      "a.dcm\tsliceID: \t2\tImagePositionPatient\t0\t0\t0\tImageOrientationPatient\t1\t0\t0\t0\t1\t0\tPixelSpacing\t1\t1\n";
-  const std::string frame = "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
-                            "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n0\t9\t0\tSAX_LV_ENDOCARDIAL\t2\n";
+      "a.dcm\tsliceID: "
+      "\t2\tImagePositionPatient\t0\t0\t0\tImageOrientationPatient\t1\t0\t0\t0\t1\t0\tPixelSpacing\t1\t1\n";
+  const std::string frame =
+      "x\ty\tz\tcontour type\tsliceID\n0\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n"
+      "9\t0\t0\tSAX_LV_ENDOCARDIAL\t2\n0\t9\t0\tSAX_LV_ENDOCARDIAL\t2\n";
   for (std::size_t n = 0; n < frame.size(); ++n) {
     try {
       parse_gpfile_texts({frame.substr(0, n)}, info, "dir");
-    } catch (const Error&) {
-    }
+    } catch (const Error&) {}
   }
   for (std::size_t n = 0; n < info.size(); ++n) {
     try {
       parse_gpfile_texts({frame}, info.substr(0, n), "dir");
-    } catch (const Error&) {
-    }
+    } catch (const Error&) {}
   }
   EXPECT_NO_THROW(parse_gpfile_texts({frame}, info, "dir"));
 }
@@ -150,8 +155,8 @@ TEST(GpFile, EveryTruncatedPrefixFailsCleanly) {
 TEST(GpFile, Corpus) {
   GpFileOptions strict;
   strict.repair = false;
-  const test::CorpusCounts n =
-      test::check_corpus("gpfile", [&](const fs::path& p) { read_gpfile(p, strict); }, /*folders=*/true);
+  const test::CorpusCounts n = test::check_corpus(
+      "gpfile", [&](const fs::path& p) { read_gpfile(p, strict); }, /*folders=*/true);
   EXPECT_GE(n.bad, 10);
 }
 
@@ -160,8 +165,7 @@ TEST(GpFile, CorpusWithRepairsNeverCrashes) {
     SCOPED_TRACE(e.path().string());
     try {
       read_gpfile(e.path());
-    } catch (const Error&) {
-    }
+    } catch (const Error&) {}
   }
 }
 

@@ -90,7 +90,8 @@ Grid rasterise(const Shape& shape, std::array<int, 3> dims, std::array<double, 3
   g.vol.origin = {12, -7, 33};
   g.vol.direction = oblique();
   // Centre between voxels in-plane (no symmetry luck), and mid-way between two slices.
-  g.centre = {(dims[0] - 1) * spacing[0] / 2 + 0.37, (dims[1] - 1) * spacing[1] / 2 - 0.21, (dims[2] - 1) * spacing[2] / 2};
+  g.centre = {(dims[0] - 1) * spacing[0] / 2 + 0.37, (dims[1] - 1) * spacing[1] / 2 - 0.21,
+              (dims[2] - 1) * spacing[2] / 2};
   g.vol.labels.assign(static_cast<std::size_t>(dims[0] * dims[1] * dims[2]), 0);
   for (int k = 0; k < dims[2]; ++k)
     for (int j = 0; j < dims[1]; ++j)
@@ -135,7 +136,8 @@ void expect_same_geometry(const LabelVolume& a, const LabelVolume& b) {
     EXPECT_NEAR(a.spacing[static_cast<std::size_t>(i)], b.spacing[static_cast<std::size_t>(i)], 1e-5);
     EXPECT_NEAR(a.origin[static_cast<std::size_t>(i)], b.origin[static_cast<std::size_t>(i)], 1e-4);
   }
-  for (int i = 0; i < 9; ++i) EXPECT_NEAR(a.direction[static_cast<std::size_t>(i)], b.direction[static_cast<std::size_t>(i)], 1e-5);
+  for (int i = 0; i < 9; ++i)
+    EXPECT_NEAR(a.direction[static_cast<std::size_t>(i)], b.direction[static_cast<std::size_t>(i)], 1e-5);
   EXPECT_EQ(a.labels, b.labels);
 }
 
@@ -195,8 +197,9 @@ TEST(LabelImages, RoundTripAnalyticShapesOnAnObliqueGridWithinHalfAPixel) {
       const double px_min = std::min(c.spacing[0], c.spacing[1]);
       EXPECT_LE(err, 0.5 * px_min) << points << " points";
       EXPECT_LT(rms, 0.15 * px_min);
-      std::printf("[ figure ] %s%s: distance to the exact section max %.3f mm (%.2f px), rms %.3f mm (%.2f px), %zu points\n",
-                  c.name, ext, err, err / px_min, rms, rms / px_min, points);
+      std::printf(
+          "[ figure ] %s%s: distance to the exact section max %.3f mm (%.2f px), rms %.3f mm (%.2f px), %zu points\n",
+          c.name, ext, err, err / px_min, rms, rms / px_min, points);
       if (std::string(ext) == ".nii.gz") {
         MaskExtractOptions raw, gauss, t10;
         raw.staircase = StaircaseSmoothing::None;
@@ -235,10 +238,10 @@ TEST(LabelImages, RoundTripPhantomsOnAnObliqueGridWithinHalfAPixel) {
   const fs::path dir = temp_dir("roundtrip");
   struct Case {
     const char* name;
-    double spacing;   // slice spacing (mm)
-    int frame;        // which frame of the phantom
+    double spacing;  // slice spacing (mm)
+    int frame;       // which frame of the phantom
   };
-  const Case cases[] = {{"ellipsoid", 6.0, 0}, {"ellipsoid", 8.0, 10}, {"torus", 5.0, 0},
+  const Case cases[] = {{"ellipsoid", 6.0, 0},     {"ellipsoid", 8.0, 10},    {"torus", 5.0, 0},
                         {"left-heart-ed", 5.0, 0}, {"left-heart-es", 5.0, 0}, {"left-heart-ed", 8.0, 0}};
   const double px = 1.0;
   double worst_px = 0;
@@ -282,9 +285,10 @@ TEST(LabelImages, RoundTripPhantomsOnAnObliqueGridWithinHalfAPixel) {
       ASSERT_GT(n, 0u);
       const double rms = std::sqrt(sum2 / static_cast<double>(n));
       worst_px = std::max(worst_px, worst / px);
-      std::printf("[ figure ] %s frame %d, %.0f mm slices%s: distance to the exact section max %.3f mm (%.2f px), "
-                  "rms %.3f mm, %zu contours (%zu exact), %zu points\n",
-                  c.name, c.frame, c.spacing, ext, worst, worst / px, rms, contours, exact, n);
+      std::printf(
+          "[ figure ] %s frame %d, %.0f mm slices%s: distance to the exact section max %.3f mm (%.2f px), "
+          "rms %.3f mm, %zu contours (%zu exact), %zu points\n",
+          c.name, c.frame, c.spacing, ext, worst, worst / px, rms, contours, exact, n);
       EXPECT_LE(worst, 0.5 * px);
       EXPECT_LT(rms, 0.15 * px);
       if (std::string(ext) == ".nii.gz") {
@@ -495,7 +499,8 @@ TEST(LabelImagesBadInput, EachFailureHasItsOwnCode) {
   }
 
   // A PNG renamed .nii: named for what it is.
-  std::ofstream(dir / "photo.nii", std::ios::binary) << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16) << std::string(200, 'x');
+  std::ofstream(dir / "photo.nii", std::ios::binary)
+      << std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16) << std::string(200, 'x');
   try {
     read_label_series(dir / "photo.nii");
     ADD_FAILURE() << "a PNG read as a label image";
@@ -574,14 +579,14 @@ TEST(LabelImagesCli, BadInputsExitWithTheirCodeAndWriteNothing) {
     ErrorCode code;
   };
   const Case cases[] = {
-      {(in / "half.nii.gz").string(), "", ErrorCode::Format},           // non-integer labels
-      {(in / "flat.nrrd").string(), "", ErrorCode::Format},             // a 2D image
-      {(in / "sizes").string(), "", ErrorCode::Format},                 // frames of different sizes
-      {(in / "truncated.nii.gz").string(), "", ErrorCode::Parse},       // corrupt (truncated) file
-      {(in / "notanimage.nii").string(), "", ErrorCode::Parse},         // not an image at all
-      {(in / "empty.nii.gz").string(), "", ErrorCode::UnknownLabel},    // no label in any frame
+      {(in / "half.nii.gz").string(), "", ErrorCode::Format},                 // non-integer labels
+      {(in / "flat.nrrd").string(), "", ErrorCode::Format},                   // a 2D image
+      {(in / "sizes").string(), "", ErrorCode::Format},                       // frames of different sizes
+      {(in / "truncated.nii.gz").string(), "", ErrorCode::Parse},             // corrupt (truncated) file
+      {(in / "notanimage.nii").string(), "", ErrorCode::Parse},               // not an image at all
+      {(in / "empty.nii.gz").string(), "", ErrorCode::UnknownLabel},          // no label in any frame
       {(in / "good.nii.gz").string(), "--label 7", ErrorCode::UnknownLabel},  // the asked label is absent
-      {sbc.string(), "", ErrorCode::MissingCompanion},                  // a contour's DICOM image is missing
+      {sbc.string(), "", ErrorCode::MissingCompanion},                        // a contour's DICOM image is missing
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.input + " " + c.extra);

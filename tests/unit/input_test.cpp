@@ -103,7 +103,8 @@ TEST(ExtractCli, ExitCodesAndNothingWritten) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.input.string());
-    EXPECT_EQ(run_cli("extract '" + c.input.string() + "' --strict -o '" + out.string() + "'"), static_cast<int>(c.code));
+    EXPECT_EQ(run_cli("extract '" + c.input.string() + "' --strict -o '" + out.string() + "'"),
+              static_cast<int>(c.code));
     EXPECT_TRUE(fs::is_empty(d)) << "a failed run left files behind";
   }
   EXPECT_EQ(run_cli("extract '" + (kCorpus / "contours_json" / "good_two_slices_two_frames.json").string() +
@@ -155,7 +156,8 @@ TEST(Input, FrameTimesFromDataOrOptionsOrSaidUnknown) {
   // The phantom's contour file has its own times: they win over the option.
   InputResult own = read_contours(dir / "ph" / "contours.json", o);
   EXPECT_EQ(own.timing, "data");
-  EXPECT_DOUBLE_EQ(own.sequence.frames[1].time_ms, read_contours(dir / "ph" / "contours.json").sequence.frames[1].time_ms);
+  EXPECT_DOUBLE_EQ(own.sequence.frames[1].time_ms,
+                   read_contours(dir / "ph" / "contours.json").sequence.frames[1].time_ms);
   o.frame_ms = 40;
   EXPECT_EQ(code_of(mask, o), ErrorCode::Usage);  // both options at once
 }

@@ -44,7 +44,8 @@ TEST(Interpolate, CatmullRomFollowsCycleBetterAndWraps) {
     const double a = 2.0 * 3.14159265358979 * t / 1200.0;
     const Vec3 truth{10 * std::cos(a), 10 * std::sin(a), 0};
     err_cr = std::max(err_cr, distance(interpolate_positions(s, t, TimeInterpolation::CatmullRomPeriodic)[0], truth));
-    if (t <= 1100.0) err_lin = std::max(err_lin, distance(interpolate_positions(s, t, TimeInterpolation::Linear)[0], truth));
+    if (t <= 1100.0)
+      err_lin = std::max(err_lin, distance(interpolate_positions(s, t, TimeInterpolation::Linear)[0], truth));
   }
   EXPECT_LT(err_cr, err_lin);
   EXPECT_LT(err_cr, 0.05);

@@ -24,7 +24,8 @@ TriangleMesh tetra(double s = 1.0) {
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("c4d_test_" + name + "_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const fs::path p = fs::temp_directory_path() /
+                     ("c4d_test_" + name + "_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   fs::remove_all(p);
   return p;
 }
@@ -134,7 +135,8 @@ TEST(MeshOutput, Python3VtkReadsPvdAndVtp) {
     write_mesh_frames(out, frames);
     out.commit();
   }
-  const std::string cmd = std::string(C4D_PYTHON) + " " + C4D_TEST_SCRIPTS + "/check_vtk_output.py " + dir.string() + " 2 4 4";
+  const std::string cmd =
+      std::string(C4D_PYTHON) + " " + C4D_TEST_SCRIPTS + "/check_vtk_output.py " + dir.string() + " 2 4 4";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   fs::remove_all(dir);
 }

@@ -84,7 +84,8 @@ TEST(IsotropicRemesh, ConstrainedEdgesAndFixedVerticesStay) {
   for (const auto& e : constrained) {
     EXPECT_TRUE(fixed[e[0]] && fixed[e[1]]);
     EXPECT_NEAR(std::abs(m.positions[e[0]].z), 0.0, 1e-12);
-    EXPECT_NEAR(c4d::distance(m.positions[e[0]], m.positions[e[1]]), c4d::distance(before[first], before[first + 1]), 1e-9);
+    EXPECT_NEAR(c4d::distance(m.positions[e[0]], m.positions[e[1]]), c4d::distance(before[first], before[first + 1]),
+                1e-9);
   }
   // Old vertices keep their order: the pole is still vertex 0, unmoved.
   EXPECT_EQ(m.positions[0].x, before[0].x);

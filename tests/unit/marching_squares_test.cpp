@@ -126,8 +126,10 @@ TEST(MarchingSquares, DiscWithinAFractionOfAPixelAfterSmoothing) {
       ++n;
     }
   raw_rms /= n, sm_rms /= n, g_rms /= n;
-  std::printf("[ figure ] disc radial error (px): raw max %.3f rms %.3f | taubin 10 max %.3f rms %.3f | gauss 1.0 max %.3f rms %.3f\n",
-              raw_max, raw_rms, sm_max, sm_rms, g_max, g_rms);
+  std::printf(
+      "[ figure ] disc radial error (px): raw max %.3f rms %.3f | taubin 10 max %.3f rms %.3f | gauss 1.0 max %.3f rms "
+      "%.3f\n",
+      raw_max, raw_rms, sm_max, sm_rms, g_max, g_rms);
   EXPECT_LE(raw_max, 0.5 + 1e-9);
   EXPECT_LT(sm_max, 0.55);
   EXPECT_LT(sm_rms, 0.2);
@@ -187,8 +189,10 @@ TEST(MarchingSquares, StaircaseFitWithinHalfAPixelOnDiscsAndEllipses) {
         }
   fit_rms = std::sqrt(fit_rms / static_cast<double>(count));
   tau_rms = std::sqrt(tau_rms / static_cast<double>(count));
-  std::printf("[ figure ] %d discs/ellipses, %zu points, error (px): raw max %.3f | taubin 10 max %.3f rms %.3f | edge fit max %.3f rms %.3f\n",
-              shapes, count, raw_max, tau_max, tau_rms, fit_max, fit_rms);
+  std::printf(
+      "[ figure ] %d discs/ellipses, %zu points, error (px): raw max %.3f | taubin 10 max %.3f rms %.3f | edge fit max "
+      "%.3f rms %.3f\n",
+      shapes, count, raw_max, tau_max, tau_rms, fit_max, fit_rms);
   EXPECT_LT(fit_max, 0.5);
   EXPECT_LT(fit_rms, 0.75 * tau_rms);
 }

@@ -20,11 +20,11 @@ namespace c4d::test {
 inline TriangleMesh icosphere(double r, int levels, Vec3 center = {}) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   TriangleMesh m;
-  m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                  {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (int l = 0; l < levels; ++l) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
     auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
@@ -56,7 +56,8 @@ inline TriangleMesh torus(double R, double r, int n, int k) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < k; ++j) {
       const double u = 2 * std::numbers::pi * i / n, v = 2 * std::numbers::pi * j / k;
-      m.positions.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+      m.positions.push_back(
+          {(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
     }
   auto id = [&](int i, int j) { return static_cast<std::uint32_t>(((i + n) % n) * k + (j + k) % k); };
   for (int i = 0; i < n; ++i)
@@ -78,7 +79,8 @@ inline TriangleMesh ring_sphere(double r, int rings, int per_ring, Vec3 center =
     const double th = std::numbers::pi * (rings - i) / (rings + 1);  // from the south upward
     for (int j = 0; j < per_ring; ++j) {
       const double ph = 2 * std::numbers::pi * j / per_ring;
-      m.positions.push_back(center + Vec3{r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th)});
+      m.positions.push_back(center +
+                            Vec3{r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th)});
     }
   }
   m.positions.push_back(center + Vec3{0, 0, r});  // north pole

@@ -14,6 +14,7 @@
 #include "contour4d/metrics/conformity.h"
 #include "contour4d/metrics/correspondence.h"
 #include "contour4d/metrics/distance.h"
+#include "contour4d/metrics/normal_deviation.h"
 #include "contour4d/metrics/evaluation.h"
 #include "contour4d/metrics/quality.h"
 #include "contour4d/metrics/topology.h"
@@ -41,7 +42,8 @@ TriangleMesh rigid_motion(const TriangleMesh& m) {
   const double a = 0.7, b = -0.4;
   for (Vec3& p : out.positions) {
     const Vec3 q{std::cos(a) * p.x - std::sin(a) * p.y, std::sin(a) * p.x + std::cos(a) * p.y, p.z};
-    p = Vec3{q.x, std::cos(b) * q.y - std::sin(b) * q.z, std::sin(b) * q.y + std::cos(b) * q.z} + Vec3{12.5, -3.0, 40.0};
+    p = Vec3{q.x, std::cos(b) * q.y - std::sin(b) * q.z, std::sin(b) * q.y + std::cos(b) * q.z} +
+        Vec3{12.5, -3.0, 40.0};
   }
   return out;
 }
@@ -129,7 +131,8 @@ TEST(Topology, SelfIntersectionsCountCrossingSpheresOnly) {
   // Restricted to flagged triangles: all flagged gives the full count, each sphere alone too (every
   // crossing pair has one triangle on each), neither none.
   const std::size_t half = a.triangles.size();
-  std::vector<char> all(crossing.triangles.size(), 1), first(crossing.triangles.size(), 0), none(crossing.triangles.size(), 0);
+  std::vector<char> all(crossing.triangles.size(), 1), first(crossing.triangles.size(), 0),
+      none(crossing.triangles.size(), 0);
   std::fill(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(half), 1);
   std::vector<char> second(crossing.triangles.size(), 1);
   std::fill(second.begin(), second.begin() + static_cast<std::ptrdiff_t>(half), 0);
@@ -250,7 +253,8 @@ TEST(Topology, IntersectsAnyAgreesWithTheCountOfEachTriangle) {
   for (std::uint32_t f = 0; f < half; ++f)
     for (std::uint32_t v : m.triangles[f])
       if (v == 0) ring.push_back(f);
-  EXPECT_FALSE(intersects_any(m.positions, m.triangles, ring, std::vector<std::uint32_t>(all.begin(), all.begin() + half)));
+  EXPECT_FALSE(
+      intersects_any(m.positions, m.triangles, ring, std::vector<std::uint32_t>(all.begin(), all.begin() + half)));
   // Two ring triangles folded onto each other are found among `these` alone.
   TriangleMesh fold;
   fold.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, 0}};
@@ -319,8 +323,8 @@ TEST(Quality, AnglesIn40To80PerTriangleAgreeWithTheMeshShare) {
   std::size_t good = 0;
   for (const Triangle& t : m.triangles)
     good += static_cast<std::size_t>(angles_40_80(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
-  EXPECT_NEAR(100.0 * static_cast<double>(good) / static_cast<double>(3 * m.triangles.size()), angle_quality(m).pct_40_80,
-              1e-9);
+  EXPECT_NEAR(100.0 * static_cast<double>(good) / static_cast<double>(3 * m.triangles.size()),
+              angle_quality(m).pct_40_80, 1e-9);
   EXPECT_EQ(angles_40_80({0, 0, 0}, {1, 0, 0}, {0.5, 0.8660254037844386, 0}), 3);  // equilateral
   EXPECT_EQ(angles_40_80({0, 0, 0}, {10, 0, 0}, {5, 0.5, 0}), 0);                  // needle: 5.7°, 5.7°, 168.6°
   EXPECT_EQ(angles_40_80({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 2);                     // 90°, 45°, 45°
@@ -395,7 +399,8 @@ TEST(Volume, AreasWithHolesAndDiscRule) {
     sl.id = i;
     Contour c;
     for (int k = 0; k < 360; ++k)
-      c.points.push_back({10 * std::cos(k * std::numbers::pi / 180), 10 * std::sin(k * std::numbers::pi / 180), double(i)});
+      c.points.push_back(
+          {10 * std::cos(k * std::numbers::pi / 180), 10 * std::sin(k * std::numbers::pi / 180), double(i)});
     sl.contours.push_back(c);
     f.slices.push_back(sl);
   }
@@ -486,6 +491,34 @@ TEST(Evaluation, EndToEndIsCleanAndThreadCountIndependent) {
   EXPECT_EQ(j["frames"].size(), 4u);
   EXPECT_TRUE(j["frames"][0].contains("accuracy_slab"));
   EXPECT_NE(format_evaluation_table(ev).find("no faults"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace c4d
+
+namespace c4d {
+namespace {
+
+// Facet normals against a reference (normal_deviation.h): zero against itself, whatever rigid motion
+// both share; a flat-faceted sphere against a finer one of the same radius stays within its facets' half
+// angle; rough vertices tilt facets by degrees that distances of a few hundredths of a mm do not show; an
+// inside-out copy is 180° off.
+TEST(NormalDeviation, ZeroOnItselfBoundedOnFinerFacetsLargeOnNoiseAndFlips) {
+  const TriangleMesh coarse = test::icosphere(10.0, 3), fine = test::icosphere(10.0, 5);
+  const NormalDeviation self = normal_deviation(coarse, coarse);
+  EXPECT_EQ(self.triangles, coarse.triangles.size());
+  EXPECT_LT(self.max_deg, 1e-6);
+  const NormalDeviation facets = normal_deviation(coarse, fine);
+  EXPECT_LT(facets.max_deg, 8.0);  // the coarse facets span under 10° of the sphere
+  TriangleMesh noisy = fine;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  for (Vec3& p : noisy.positions) p = p + Vec3{u(rng), u(rng), u(rng)};
+  EXPECT_GT(normal_deviation(noisy, fine).p99_deg, 5.0);
+  TriangleMesh flipped = coarse;
+  for (Triangle& t : flipped.triangles) std::swap(t[1], t[2]);
+  EXPECT_GT(normal_deviation(flipped, coarse).median_deg, 179.0);
+  EXPECT_THROW(normal_deviation(coarse, TriangleMesh{}), InvalidInput);
 }
 
 }  // namespace

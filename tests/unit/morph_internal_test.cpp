@@ -39,13 +39,10 @@ MorphInputs morph_inputs(const Sequence& seq) {
     SurfaceOptions so = o.surface;
     if (f == 0) {
       so.rows = false;
-      so.remesher = o.frame0_remesher;
-      so.angle_repair.target_deg = o.morph.angle_repair.target_deg;
+      so.remesher = RemeshEngine::Fast;
+      so.angle_target_deg = o.morph.angle_repair.target_deg;
     } else {
-      so.rows = true;
-      so.rows_final_remesh_iterations = 0;
-      so.check_self_intersections = false;
-      so.angle_repair.passes = o.fast_target_repair_passes;
+      so.geometry_only = true;
     }
     in.push_back(reconstruct_frame(seq, static_cast<int>(f), so));
   }
@@ -150,7 +147,8 @@ TEST(MorphInternal, ContourFitBringsEveryFrameOntoItsContours) {
     const TopologyReport t = check_topology(mesh, {});
     EXPECT_TRUE(t.faults.empty()) << "frame " << f << ": " << (t.faults.empty() ? "" : t.faults.front());
     EXPECT_GE(angle_quality(mesh).min_angle_deg, std::min(20.0, angle_quality(b.frame(f)).min_angle_deg) - 1e-9) << f;
-    const double ca = contour_conformity(mesh, p.contours.frames[f]).max, cb = contour_conformity(b.frame(f), p.contours.frames[f]).max;
+    const double ca = contour_conformity(mesh, p.contours.frames[f]).max,
+                 cb = contour_conformity(b.frame(f), p.contours.frames[f]).max;
     EXPECT_NEAR(ca, r.fit_max_after, 0.01) << f;
     worst_a = std::max(worst_a, ca);
     worst_b = std::max(worst_b, cb);

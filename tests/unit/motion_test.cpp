@@ -68,7 +68,8 @@ TEST(Rbf, ManyPointsGiveEachPointsOwnResultBitForBit) {
     const RbfDeformer f(src, dst, o);
     for (std::size_t count : {1u, 3u, 4u, 7u, 53u}) {
       std::vector<Vec3> pts;
-      for (std::size_t i = 0; i < count; ++i) pts.push_back({7 * std::sin(i * 0.9), 11 * std::cos(i * 0.4), 0.3 * i - 6});
+      for (std::size_t i = 0; i < count; ++i)
+        pts.push_back({7 * std::sin(i * 0.9), 11 * std::cos(i * 0.4), 0.3 * i - 6});
       const std::vector<Vec3> in = pts;
       f.apply(pts);
       for (std::size_t i = 0; i < count; ++i) {
@@ -217,7 +218,9 @@ TEST(CornerSnap, RefusedOrFixedCandidatesPassToTheNextWithinTries) {
   y = x;
   std::fill(fixed.begin(), fixed.end(), 0);
   fixed[0] = 1;
-  EXPECT_EQ(snap_corners(y, lines, on_line, fixed, [](std::uint32_t, Vec3) { return true; }, o), 1u);
+  EXPECT_EQ(snap_corners(
+                y, lines, on_line, fixed, [](std::uint32_t, Vec3) { return true; }, o),
+            1u);
   EXPECT_EQ(y[0], x[0]);
   EXPECT_EQ(y[1], (Vec3{0, 0, 0}));
 }
@@ -225,12 +228,15 @@ TEST(CornerSnap, RefusedOrFixedCandidatesPassToTheNextWithinTries) {
 TEST(CornerSnap, GentleTurnsAreNoCorners) {
   // A 36-gon turns by 10° at each point, under the 30° of a corner.
   std::vector<Vec3> circle;
-  for (int i = 0; i < 36; ++i) circle.push_back({10 * std::cos(i * std::numbers::pi / 18), 10 * std::sin(i * std::numbers::pi / 18), 0});
+  for (int i = 0; i < 36; ++i)
+    circle.push_back({10 * std::cos(i * std::numbers::pi / 18), 10 * std::sin(i * std::numbers::pi / 18), 0});
   std::vector<Vec3> x{{10.2, 0.1, 0.2}, circle[9]};
   std::vector<char> fixed(x.size(), 0);
   const CornerSnapOptions o = retry_options(3);
   std::vector<Vec3> y = x;
-  EXPECT_EQ(snap_corners(y, {circle}, {{1}}, fixed, [](std::uint32_t, Vec3) { return true; }, o), 0u);
+  EXPECT_EQ(snap_corners(
+                y, {circle}, {{1}}, fixed, [](std::uint32_t, Vec3) { return true; }, o),
+            0u);
   EXPECT_EQ(y, x);
 }
 

@@ -30,8 +30,8 @@ std::string slurp(const std::string& path) {
 
 std::string make_mask(const std::string& dir, int seed, int frames) {
   const std::string mask = dir + "/myo" + std::to_string(seed) + ".nii.gz";
-  const std::string cmd = std::string(C4D_PYTHON) + " " + C4D_TEST_SCRIPTS + "/make_myocardium.py " + mask + " --seed " +
-                          std::to_string(seed) + " --frames " + std::to_string(frames);
+  const std::string cmd = std::string(C4D_PYTHON) + " " + C4D_TEST_SCRIPTS + "/make_myocardium.py " + mask +
+                          " --seed " + std::to_string(seed) + " --frames " + std::to_string(frames);
   EXPECT_EQ(sh(cmd), 0) << cmd;
   return mask;
 }

@@ -153,7 +153,8 @@ struct MeshDistance {
           if (it == grid.end()) continue;
           for (std::uint32_t t : it->second) {
             const Triangle& tr = m.triangles[t];
-            best = std::min(best, point_triangle_distance(p, m.positions[tr[0]], m.positions[tr[1]], m.positions[tr[2]]));
+            best =
+                std::min(best, point_triangle_distance(p, m.positions[tr[0]], m.positions[tr[1]], m.positions[tr[2]]));
           }
         }
     return best;
@@ -168,8 +169,8 @@ std::size_t contour_count(const Frame& f) {
 
 TEST(Phantoms, NamesAndUnknown) {
   const auto names = phantom_names();
-  for (const char* n : {"ellipsoid", "bifurcation", "torus", "left-heart", "left-heart-cycle", "left-heart-ed",
-                        "left-heart-es"})
+  for (const char* n :
+       {"ellipsoid", "bifurcation", "torus", "left-heart", "left-heart-cycle", "left-heart-ed", "left-heart-es"})
     EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
   try {
     make_phantom("no-such-shape");
@@ -245,8 +246,8 @@ TEST(Phantoms, TruthApproximatesAnalyticSurface) {
       const Triangle& t = m.triangles[rng() % m.triangles.size()];
       double a = u(rng), b = u(rng);
       if (a + b > 1) a = 1 - a, b = 1 - b;
-      const Vec3 p = m.positions[t[0]] + a * (m.positions[t[1]] - m.positions[t[0]]) +
-                     b * (m.positions[t[2]] - m.positions[t[0]]);
+      const Vec3 p =
+          m.positions[t[0]] + a * (m.positions[t[1]] - m.positions[t[0]]) + b * (m.positions[t[2]] - m.positions[t[0]]);
       worst = std::max(worst, std::abs(analytic_distance(ph, 0, p)));
     }
     EXPECT_LT(worst, 0.05) << name << ": truth -> analytic";
@@ -273,8 +274,8 @@ TEST(Phantoms, ObliqueIsARigidMotion) {
       EXPECT_EQ(contour_count(a.contours.frames[f]), contour_count(b.contours.frames[f]));
       ASSERT_EQ(a.contours.frames[f].slices.size(), b.contours.frames[f].slices.size());
       for (std::size_t s = 0; s < a.contours.frames[f].slices.size(); ++s)
-        EXPECT_NEAR(a.contours.frames[f].slices[s].offset - a.slab_min, b.contours.frames[f].slices[s].offset - b.slab_min,
-                    1e-9);
+        EXPECT_NEAR(a.contours.frames[f].slices[s].offset - a.slab_min,
+                    b.contours.frames[f].slices[s].offset - b.slab_min, 1e-9);
     }
     EXPECT_NEAR(a.slab_max - a.slab_min, b.slab_max - b.slab_min, 1e-9);
     check_sections(b);

@@ -143,7 +143,8 @@ TEST(Reconstruct4D, ReportListsTheMorphFiguresPerFrame) {
     EXPECT_TRUE(frames[f].at("plane_snapped_vertices").is_number_integer()) << f;
     const auto& fit = frames[f].at("contour_fit");
     EXPECT_TRUE(fit.at("moved_vertices").is_number_integer()) << f;
-    EXPECT_LE(fit.at("max_distance_after_mm").get<double>(), fit.at("max_distance_before_mm").get<double>() + 1e-12) << f;
+    EXPECT_LE(fit.at("max_distance_after_mm").get<double>(), fit.at("max_distance_before_mm").get<double>() + 1e-12)
+        << f;
   }
   EXPECT_GT(slid, 0);
   fs::remove_all(dir);

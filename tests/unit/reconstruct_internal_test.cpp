@@ -88,7 +88,8 @@ double conformity_max(const c4d::Sequence& seq, const c4d::TriangleMesh& m) {
       for (const Vec3& p : c.points) {
         double best = 1e300;
         for (const auto& t : m.triangles)
-          for (int k = 0; k < 3; ++k) best = std::min(best, point_segment(p, m.positions[t[k]], m.positions[t[(k + 1) % 3]]));
+          for (int k = 0; k < 3; ++k)
+            best = std::min(best, point_segment(p, m.positions[t[k]], m.positions[t[(k + 1) % 3]]));
         worst = std::max(worst, best);
       }
   return worst;
@@ -165,7 +166,8 @@ TEST(Reconstruct, CylinderIsClosedOutwardAndThroughTheContours) {
 
 TEST(Reconstruct, ContoursAreMeshEdges) {
   // Keep every input vertex (corner angle 0): conformity is exact.
-  const auto seq = stack(range(0, 15, 5), [](double z) { return Polys{ellipse(0.2 * z, 0, 12 - 0.3 * z, 8, 70, 0.05)}; });
+  const auto seq =
+      stack(range(0, 15, 5), [](double z) { return Polys{ellipse(0.2 * z, 0, 12 - 0.3 * z, 8, 70, 0.05)}; });
   c4d::detail::SurfaceParams o = defaults();
   o.corner_angle_deg = 0;
   const auto m = frame_of(seq, 0, o);
@@ -184,9 +186,10 @@ TEST(Reconstruct, SphereStackVolume) {
   const double truth = 4.0 / 3.0 * M_PI * R * R * R;
   const double err = (c4d::signed_volume(m) - truth) / truth;
   const Angles a = angles(m);
-  std::printf("sphere R=20, 5 mm slices: volume error %.2f %%, %zu vertices, angles in 40-80: %.1f %%, "
-              "triangles with an angle < 25: %.3f %%, min angle %.1f deg\n",
-              100 * err, m.positions.size(), 100 * a.share_40_80, 100 * a.share_below_25, a.min_deg);
+  std::printf(
+      "sphere R=20, 5 mm slices: volume error %.2f %%, %zu vertices, angles in 40-80: %.1f %%, "
+      "triangles with an angle < 25: %.3f %%, min angle %.1f deg\n",
+      100 * err, m.positions.size(), 100 * a.share_40_80, 100 * a.share_below_25, a.min_deg);
   EXPECT_LT(std::abs(err), 0.03);
   EXPECT_GT(a.min_deg, 5.0);
   EXPECT_GT(a.share_40_80, 0.7);
@@ -207,7 +210,8 @@ TEST(Reconstruct, BranchOneToTwoAndTwoToOne) {
       const auto m = frame_of(seq, 0, opt, &rep);
       for (const auto& pr : c4d::self_intersecting_pairs(m)) {
         for (std::uint32_t t : pr)
-          for (auto v : m.triangles[t]) std::printf(" (%.3f %.3f %.3f)", m.positions[v].x, m.positions[v].y, m.positions[v].z);
+          for (auto v : m.triangles[t])
+            std::printf(" (%.3f %.3f %.3f)", m.positions[v].x, m.positions[v].y, m.positions[v].z);
         std::printf("\n");
       }
       expect_closed(m, 2, 1);
@@ -262,7 +266,9 @@ TEST(Reconstruct, HoleThatEndsGetsItsOwnCap) {
 }
 
 TEST(Reconstruct, SeparateStructuresAndSingleSlice) {
-  const auto two = stack(range(0, 10, 5), [](double) { return Polys{ellipse(-30, 0, 8, 8, 40), ellipse(30, 0, 8, 8, 40)}; });
+  const auto two = stack(range(0, 10, 5), [](double) {
+    return Polys{ellipse(-30, 0, 8, 8, 40), ellipse(30, 0, 8, 8, 40)};
+  });
   expect_closed(frame_of(two, 0, c4d::SurfaceOptions{}), 4, 2);
   const auto one = stack({0.0}, [](double) { return Polys{ellipse(0, 0, 10, 6, 50)}; });
   expect_closed(frame_of(one, 0, c4d::SurfaceOptions{}), 2, 1);
@@ -291,7 +297,8 @@ std::vector<Vec3> sorted_positions(const c4d::TriangleMesh& m, const std::functi
   return p;
 }
 
-void expect_same_surface(const c4d::TriangleMesh& a, const c4d::TriangleMesh& b, const std::function<Vec3(Vec3)>& back) {
+void expect_same_surface(const c4d::TriangleMesh& a, const c4d::TriangleMesh& b,
+                         const std::function<Vec3(Vec3)>& back) {
   ASSERT_EQ(a.positions.size(), b.positions.size());
   ASSERT_EQ(a.triangles.size(), b.triangles.size());
   EXPECT_NEAR(c4d::signed_volume(a), c4d::signed_volume(b), 1e-6 * std::abs(c4d::signed_volume(a)));
@@ -312,7 +319,8 @@ c4d::Sequence irregular() {
 // terms (FairingOptions::scale_aware).
 c4d::Sequence irregular_ring() {
   return stack(range(0, 10, 5), [](double z) {
-    return Polys{ellipse(0.2 * z, 0.1 * z, 16 - 0.2 * z, 12, 95, 0.05), ellipse(0.2 * z + 1, 0.1 * z, 7, 5 + 0.1 * z, 41, 0.05)};
+    return Polys{ellipse(0.2 * z, 0.1 * z, 16 - 0.2 * z, 12, 95, 0.05),
+                 ellipse(0.2 * z + 1, 0.1 * z, 7, 5 + 0.1 * z, 41, 0.05)};
   });
 }
 
@@ -463,12 +471,12 @@ TEST(ReconstructPhantoms, AccuracyVolumeAndQuality) {
         c4d::SurfaceReport rep;
         const auto m = frame_of(ph.contours, 0, so, &rep);
         const Accuracy a = accuracy(ph, m, !oblique);
-        std::printf("%-5s %-14s %-7s: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 %.1f %%, "
-                    "<25: %.3f %%, min %.1f deg, conformity mean %.4f mm%s\n",
-                    rows ? "rows" : "bands", name.c_str(), oblique ? "oblique" : "", m.positions.size(), a.mean, a.max,
-                    100 * a.volume_error,
-                    100 * a.angles.share_40_80, 100 * a.angles.share_below_25, a.angles.min_deg, a.conformity_mean,
-                    rep.warnings.empty() ? "" : (" [" + rep.warnings[0] + "]").c_str());
+        std::printf(
+            "%-5s %-14s %-7s: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 %.1f %%, "
+            "<25: %.3f %%, min %.1f deg, conformity mean %.4f mm%s\n",
+            rows ? "rows" : "bands", name.c_str(), oblique ? "oblique" : "", m.positions.size(), a.mean, a.max,
+            100 * a.volume_error, 100 * a.angles.share_40_80, 100 * a.angles.share_below_25, a.angles.min_deg,
+            a.conformity_mean, rep.warnings.empty() ? "" : (" [" + rep.warnings[0] + "]").c_str());
         SCOPED_TRACE(name + (oblique ? " oblique" : "") + (rows ? " rows" : " bands"));
         EXPECT_TRUE(rep.closed);
         EXPECT_FALSE(rep.self_intersects);
@@ -525,7 +533,8 @@ TEST(ReconstructPhantoms, RowsPathIsClosedAndWellShaped) {
   for (const std::string name : {"left-heart-es", "torus", "bifurcation"})
     check(c4d::make_phantom(name, {}).contours, name, name == "torus" ? 0 : 2);
   const std::string dir = std::string(C4D_DATA_DIR) + "/bivme-patient1/guidepoints";
-  ASSERT_TRUE(std::filesystem::is_directory(dir)) << "real data folder missing: " << dir << " (see ../shared/data/README.md)";
+  ASSERT_TRUE(std::filesystem::is_directory(dir))
+      << "real data folder missing: " << dir << " (see ../shared/data/README.md)";
   check(c4d::read_contours(dir).sequence, "biv-me frame 0", 2);
 }
 
@@ -547,17 +556,18 @@ TEST(ReconstructPhantoms, DelaunayTilingGivesClosedSurfaces) {
       const auto m = frame_of(ph.contours, 0, so, &rep);
       const Accuracy a = accuracy(ph, m, false);
       SCOPED_TRACE(name + (oblique ? " oblique" : ""));
-      std::printf("%-14s %-7s delaunay: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 "
-                  "%.1f %%, <25: %.3f %%, min %.1f deg\n",
-                  name.c_str(), oblique ? "oblique" : "", m.positions.size(), a.mean, a.max, 100 * a.volume_error,
-                  100 * a.angles.share_40_80, 100 * a.angles.share_below_25, a.angles.min_deg);
+      std::printf(
+          "%-14s %-7s delaunay: %6zu vertices, distance mean %.4f max %.3f mm, volume %+.2f %%, angles 40-80 "
+          "%.1f %%, <25: %.3f %%, min %.1f deg\n",
+          name.c_str(), oblique ? "oblique" : "", m.positions.size(), a.mean, a.max, 100 * a.volume_error,
+          100 * a.angles.share_40_80, 100 * a.angles.share_below_25, a.angles.min_deg);
       EXPECT_TRUE(rep.closed);
       EXPECT_FALSE(rep.self_intersects);
       EXPECT_EQ(rep.euler, name == "torus" ? 0 : 2);
-      for (const std::string& w : rep.warnings) EXPECT_EQ(w.find("Delaunay tiling not possible"), std::string::npos) << w;
+      for (const std::string& w : rep.warnings)
+        EXPECT_EQ(w.find("Delaunay tiling not possible"), std::string::npos) << w;
       EXPECT_LT(std::abs(a.volume_error), name == "bifurcation" ? 0.05 : 0.01);
       EXPECT_GT(a.angles.min_deg, 15.0);
       EXPECT_GT(a.angles.share_40_80, 0.85);
     }
 }
-

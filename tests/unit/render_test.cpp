@@ -70,7 +70,7 @@ TEST(Render, CompactAndClassicalDrawTheBeatingShape) {
   }
   for (const Image& im : images) {
     EXPECT_TRUE(is_object(im, o.width / 2, o.height / 2));  // centre covered
-    EXPECT_FALSE(is_object(im, 0, 0));                       // corner is background
+    EXPECT_FALSE(is_object(im, 0, 0));                      // corner is background
     const double frac = object_fraction(im);
     EXPECT_GT(frac, 0.1);
     EXPECT_LT(frac, 0.9);

@@ -60,14 +60,14 @@ TEST_P(CorruptedBivme, RepairedWithinThreePercent) {
   EXPECT_TRUE(named) << flaw.name << ": " << r["repairs"].dump();
   const double clean = frame_volume(report(dir + "/clean")), repaired = frame_volume(r);
   EXPECT_NEAR(repaired / clean, 1.0, 0.03) << flaw.name;
-  EXPECT_EQ(sh(cli + " reconstruct " + dir + "/in" + f + " --strict -o " + dir + "/strict"), flaw.strict_code) << flaw.name;
+  EXPECT_EQ(sh(cli + " reconstruct " + dir + "/in" + f + " --strict -o " + dir + "/strict"), flaw.strict_code)
+      << flaw.name;
 }
 
 INSTANTIATE_TEST_SUITE_P(Flaws, CorruptedBivme,
                          ::testing::Combine(::testing::Values(Flaw{"open", "open-arc-closed", 0},
                                                               Flaw{"loop", "loop-removed", 16},
-                                                              Flaw{"spike", "spike", 0},
-                                                              Flaw{"backtrack", "spike", 16},
+                                                              Flaw{"spike", "spike", 0}, Flaw{"backtrack", "spike", 16},
                                                               Flaw{"duplicate-slice", "slices-merged", 19},
                                                               Flaw{"one-point", "too-few-points", 15}),
                                             ::testing::Values(0, 1)),

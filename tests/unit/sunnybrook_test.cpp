@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 
 fs::path patient() {
   const fs::path p = fs::path(C4D_DATA_DIR) / "sunnybrook-SC-HF-I-1";
-  if (!fs::is_directory(p)) ADD_FAILURE() << "the real data folder " << p << " is missing (see ../shared/data/README.md)";
+  if (!fs::is_directory(p))
+    ADD_FAILURE() << "the real data folder " << p << " is missing (see ../shared/data/README.md)";
   return p;
 }
 
@@ -51,9 +52,9 @@ TEST(Sunnybrook, EndocardiumTwoPhasesNineSlicesInPatientSpace) {
   const Sequence& s = r.sequence;
   EXPECT_EQ(r.format, "sunnybrook");
   EXPECT_EQ(s.space, "LPS");
-  ASSERT_EQ(s.frames.size(), 2u);                      // phases 7 and 18
-  EXPECT_LT(s.frames[0].time_ms, s.frames[1].time_ms); // TriggerTime, ms
-  EXPECT_NEAR(s.frames[1].time_ms, 720.8, 30.0);       // image 59: 720.78 ms
+  ASSERT_EQ(s.frames.size(), 2u);                       // phases 7 and 18
+  EXPECT_LT(s.frames[0].time_ms, s.frames[1].time_ms);  // TriggerTime, ms
+  EXPECT_NEAR(s.frames[1].time_ms, 720.8, 30.0);        // image 59: 720.78 ms
   std::map<int, double> offset;
   for (const Frame& f : s.frames) {
     EXPECT_EQ(f.slices.size(), 9u);
@@ -132,8 +133,9 @@ TEST(Sunnybrook, EndocardiumInsideEpicardiumOnEverySlice) {
       }
       EXPECT_LT(worst, 0.75) << "slice " << sl.id;
       EXPECT_LE(out, static_cast<int>(endo->points.size()) / 5) << "slice " << sl.id;
-      if (out) std::printf("[ figure ] slice %d: %d of %zu endocardial points on/outside the epicardium, by <= %.3f mm\n", sl.id, out,
-                           endo->points.size(), worst);
+      if (out)
+        std::printf("[ figure ] slice %d: %d of %zu endocardial points on/outside the epicardium, by <= %.3f mm\n",
+                    sl.id, out, endo->points.size(), worst);
       ++checked;
     }
   EXPECT_EQ(checked, 9);
@@ -156,15 +158,16 @@ TEST(SunnybrookBadInput, MissingImageMalformedLineMissingFolder) {
   fs::remove_all(dir);
   fs::create_directories(dir / "i-contours");
   fs::create_directories(dir / "dicoms_contoured");
-  fs::copy_file(src / "i-contours" / "IM-0001-0048-icontour-manual.txt", dir / "i-contours" / "IM-0001-0048-icontour-manual.txt");
+  fs::copy_file(src / "i-contours" / "IM-0001-0048-icontour-manual.txt",
+                dir / "i-contours" / "IM-0001-0048-icontour-manual.txt");
   EXPECT_EQ(code_of([&] { read_sunnybrook(dir); }), ErrorCode::MissingCompanion);
   fs::copy_file(src / "dicoms_contoured" / "48.dcm", dir / "dicoms_contoured" / "48.dcm");
   EXPECT_EQ(read_sunnybrook(dir).sequence.frames.size(), 1u);
   std::ofstream(dir / "i-contours" / "IM-0001-0048-icontour-manual.txt", std::ios::app) << "12.5 oops\n";
   EXPECT_EQ(code_of([&] { read_sunnybrook(dir); }), ErrorCode::Parse);
   std::ofstream(dir / "dicoms_contoured" / "48.dcm") << "not a dicom";
-  fs::copy_file(src / "i-contours" / "IM-0001-0048-icontour-manual.txt", dir / "i-contours" / "IM-0001-0048-icontour-manual.txt",
-                fs::copy_options::overwrite_existing);
+  fs::copy_file(src / "i-contours" / "IM-0001-0048-icontour-manual.txt",
+                dir / "i-contours" / "IM-0001-0048-icontour-manual.txt", fs::copy_options::overwrite_existing);
   EXPECT_EQ(code_of([&] { read_sunnybrook(dir); }), ErrorCode::Parse);
   EXPECT_EQ(code_of([&] { read_sunnybrook(dir / "nope"); }), ErrorCode::FileNotFound);
   fs::remove_all(dir / "i-contours");

@@ -23,7 +23,8 @@ TriangleMesh torus(double R, double r, int nu, int nv) {
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
       const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      m.positions.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+      m.positions.push_back(
+          {(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
     }
   auto at = [&](int i, int j) { return static_cast<std::uint32_t>((i % nu) * nv + (j % nv)); };
   for (int i = 0; i < nu; ++i)
@@ -37,7 +38,8 @@ TriangleMesh torus(double R, double r, int nu, int nv) {
 double scan_distance(const TriangleMesh& m, const Vec3& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const Triangle& t : m.triangles)
-    best = std::min(best, c4d::distance(p, c4d::closest_on_triangle(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])));
+    best = std::min(
+        best, c4d::distance(p, c4d::closest_on_triangle(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])));
   return best;
 }
 
@@ -49,11 +51,11 @@ TEST(SurfaceWalk, ClosestOnTriangleRegions) {
     EXPECT_NEAR(q.y, want.y, 1e-12);
     EXPECT_NEAR(q.z, want.z, 1e-12);
   };
-  expect({0.5, 0.5, 3}, {0.5, 0.5, 0});   // face
-  expect({-1, -1, 1}, a);                 // vertex regions
+  expect({0.5, 0.5, 3}, {0.5, 0.5, 0});  // face
+  expect({-1, -1, 1}, a);                // vertex regions
   expect({5, -1, 0}, b);
   expect({-1, 5, 0}, c);
-  expect({1, -2, 0}, {1, 0, 0});          // edge regions
+  expect({1, -2, 0}, {1, 0, 0});  // edge regions
   expect({-2, 1, 0}, {0, 1, 0});
   expect({2, 2, -1}, {1, 1, 0});
   // A degenerate (collinear) triangle: the closest point of its edges.

@@ -76,8 +76,10 @@ TEST(Tiling, BandIsTheOptimumOfTheFullProgramme) {
     int n, m;
     double r_lo, r_up, dz, shift, wobble;
   };
-  const Case cases[] = {{150, 130, 10.0, 10.5, 1.0, 0.0, 0.05}, {120, 120, 10.0, 9.0, 1.0, 3.0, 0.1},
-                        {40, 200, 6.0, 12.0, 5.0, 0.0, 0.0},   {90, 70, 8.0, 8.2, 0.3, 0.5, 0.8}};
+  const Case cases[] = {{150, 130, 10.0, 10.5, 1.0, 0.0, 0.05},
+                        {120, 120, 10.0, 9.0, 1.0, 3.0, 0.1},
+                        {40, 200, 6.0, 12.0, 5.0, 0.0, 0.0},
+                        {90, 70, 8.0, 8.2, 0.3, 0.5, 0.8}};
   for (const Case& c : cases) {
     std::vector<Vec3> pos;
     std::vector<std::uint32_t> lo, up;
@@ -252,8 +254,10 @@ TEST(Capping, CapCoversTheRegionAndKeepsLoopEdges) {
     for (std::size_t k = 0; k < outer.size(); ++k)
       EXPECT_EQ(use.count({static_cast<std::uint32_t>(k), static_cast<std::uint32_t>((k + 1) % outer.size())}), 1u);
     const double hmax = *std::max_element(cap.height.begin(), cap.height.end());
-    if (style == c4d::CapStyle::Flat) EXPECT_EQ(hmax, 0.0);
-    else EXPECT_NEAR(hmax, 2.0, 0.3);
+    if (style == c4d::CapStyle::Flat)
+      EXPECT_EQ(hmax, 0.0);
+    else
+      EXPECT_NEAR(hmax, 2.0, 0.3);
     EXPECT_GT(cap.points.size(), outer.size() + hole.size());
   }
 }
@@ -263,7 +267,8 @@ TEST(Capping, CapCoversTheRegionAndKeepsLoopEdges) {
 // segment, to the bit, on a ring with a hole near one side and segments of very different lengths.
 TEST(Capping, DomeHeightsFollowTheExactDistanceToTheLoops) {
   std::vector<Vec2> outer = ellipse(30, 12, 90);
-  outer.insert(outer.begin() + 10, Vec2{(outer[9].x + outer[10].x) / 2, (outer[9].y + outer[10].y) / 2});  // a short segment
+  outer.insert(outer.begin() + 10,
+               Vec2{(outer[9].x + outer[10].x) / 2, (outer[9].y + outer[10].y) / 2});  // a short segment
   const auto o = c4d::canonical_polygon(outer, true);
   std::vector<Vec2> hole = ellipse(3, 2, 12);
   for (Vec2& p : hole) p.x += 20;
@@ -318,7 +323,8 @@ TEST(Capping, UniformScaleGivesAMeanEdgeNearTheEdgeLength) {
   EXPECT_LT(mean_interior_edge(s), 1.15);
   EXPECT_LT(s.points.size(), 0.65 * static_cast<double>(p.points.size()));
   double area = 0.0;
-  for (const auto& t : s.triangles) area += 0.5 * c4d::cross(s.points[t[1]] - s.points[t[0]], s.points[t[2]] - s.points[t[0]]);
+  for (const auto& t : s.triangles)
+    area += 0.5 * c4d::cross(s.points[t[1]] - s.points[t[0]], s.points[t[2]] - s.points[t[0]]);
   EXPECT_NEAR(area, c4d::signed_area(outer) + c4d::signed_area(hole), 1e-6);
   // Below 1 (or NaN) it is 1: the bound never falls below `edge`.
   for (double u : {0.5, std::numeric_limits<double>::quiet_NaN()}) {
@@ -360,7 +366,8 @@ TEST(Capping, InteriorCoarsensAwayFromTheLoops) {
     EXPECT_LT(g.points.size(), u.points.size() / 2);
     // Still a triangulation of the whole region.
     double area = 0.0;
-    for (const auto& t : g.triangles) area += 0.5 * c4d::cross(g.points[t[1]] - g.points[t[0]], g.points[t[2]] - g.points[t[0]]);
+    for (const auto& t : g.triangles)
+      area += 0.5 * c4d::cross(g.points[t[1]] - g.points[t[0]], g.points[t[2]] - g.points[t[0]]);
     EXPECT_NEAR(area, c4d::signed_area(loop), 1e-6);
     // A far bound of 0, below 1 or NaN is the uniform one (0 or NaN as a bound would never stop refining).
     for (double far : {0.0, 0.5, std::numeric_limits<double>::quiet_NaN()}) {
@@ -397,7 +404,8 @@ TEST(Caps, FillLiftsADomeToItsTargetWithoutMovingTheRim) {
   const auto loop = ellipse(10, 10, 64);
   const auto cap = c4d::triangulate_cap({loop}, c4d::CapStyle::Rounded, {1.0, 2.5});
   std::vector<Vec3> pos;
-  for (std::size_t k = 0; k < cap.points.size(); ++k) pos.push_back({cap.points[k].x, cap.points[k].y, 3.0 - cap.height[k]});
+  for (std::size_t k = 0; k < cap.points.size(); ++k)
+    pos.push_back({cap.points[k].x, cap.points[k].y, 3.0 - cap.height[k]});
   const c4d::CapFrame frame{3.0, -1.0, 2.5};  // a bottom cap under the plane z = 3
   const double area = c4d::signed_area(loop);
   const double before = c4d::cap_volume(pos, cap.triangles, frame);
@@ -482,4 +490,3 @@ TEST(Cap, CrossingLoopsAreRefusedNotTriangulated) {
 }
 
 }  // namespace
-

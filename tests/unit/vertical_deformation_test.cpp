@@ -44,7 +44,8 @@ std::vector<Vec2> project(const std::vector<Vec3>& pts, Vec3 u, Vec3 v) {
 
 double distance_to_polygon(Vec2 q, const std::vector<Vec2>& poly) {
   double best = 1e300;
-  for (std::size_t i = 0; i < poly.size(); ++i) best = std::min(best, segment_distance(q, poly[i], poly[(i + 1) % poly.size()]));
+  for (std::size_t i = 0; i < poly.size(); ++i)
+    best = std::min(best, segment_distance(q, poly[i], poly[(i + 1) % poly.size()]));
   return best;
 }
 
@@ -227,7 +228,7 @@ TEST(Ridge, EndPointsIgnoreStartPointAndOrientationOfA) {
   EXPECT_TRUE(same_set(ridge_end_points(rotated, c.B, c.C, pl)));
   EXPECT_TRUE(same_set(ridge_end_points(reversed, c.B, c.C, pl)));
   EXPECT_TRUE(same_set(ridge_end_points(c.A, c.C, c.B, pl)));  // B and C swapped
-  EXPECT_FALSE(ridge_end_points(c.A, c.B, c.B, pl).found);  // B = C: one band everywhere, no ridge
+  EXPECT_FALSE(ridge_end_points(c.A, c.B, c.B, pl).found);     // B = C: one band everywhere, no ridge
 }
 
 // ---------------------------------------------------------------------------------------------

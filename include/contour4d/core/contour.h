@@ -28,6 +28,13 @@ double perimeter(const std::vector<Vec3>& polygon);
 //! measurements (Lim et al., "Mesh Conformity": every 0.2 mm).
 std::vector<Vec3> sample_closed_polyline(const std::vector<Vec3>& polygon, double step);
 
+//! The point of the polyline `poly` closest to p (the first such point along it; closed: the last point
+//! joins the first); p when `poly` is empty.
+Vec2 closest_on_polyline(Vec2 p, const std::vector<Vec2>& poly, bool closed = true);
+
+//! Distance (mm) from p to the polyline `poly` (closed: the last point joins the first); infinity when empty.
+double polyline_distance(Vec2 p, const std::vector<Vec2>& poly, bool closed = true);
+
 //! True when the closed polygon has two non-adjacent edges that touch or cross (O(n log n)
 //! sweep is not needed for our sizes: O(n²) with a bounding-box prefilter).
 bool is_self_intersecting(const std::vector<Vec2>& polygon);

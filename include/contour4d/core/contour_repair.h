@@ -25,12 +25,12 @@ struct ContourRepair {
 
 //! Options of repair_contours.
 struct RepairOptions {
-  double duplicate_mm = 1e-3;   //!< consecutive points closer than this are one point
+  double duplicate_mm = 1e-3;        //!< consecutive points closer than this are one point
   double duplicate_fraction = 0.05;  //!< ... or closer than this fraction of the contour's median point spacing
-  double spike_deg = 150.0;     //!< a point where the contour turns back by more than this is a spike (a corner of
-                                //!< a ventricle turns by 90–120°)
-  double open_gap_factor = 4.0; //!< a closing gap longer than this × the median point spacing is an open arc
-  double min_plane_gap = 0.1;   //!< two slice ids whose planes are closer than this (mm) are one slice
+  double spike_deg = 150.0;          //!< a point where the contour turns back by more than this is a spike (a corner of
+                                     //!< a ventricle turns by 90–120°)
+  double open_gap_factor = 4.0;      //!< a closing gap longer than this × the median point spacing is an open arc
+  double min_plane_gap = 0.1;        //!< two slice ids whose planes are closer than this (mm) are one slice
 };
 
 //! Repairs `contours` in place (contours may be dropped or change slice id) and lists what was done.

@@ -12,35 +12,35 @@ namespace c4d {
 
 //! Exit codes of the command-line tool, one per failure class (0 is success).
 enum class ErrorCode : int {
-  Internal = 1,           //!< a bug: please report it
-  Usage = 2,              //!< bad command line
-  FileNotFound = 10,      //!< input file or folder missing or unreadable
-  EmptyFile = 11,         //!< input file has no content
-  Parse = 12,             //!< syntax error, truncated file, malformed line
-  Format = 13,            //!< wrong format name, version or units
-  NonFinite = 14,         //!< NaN or infinite coordinate
-  DegenerateContour = 15, //!< fewer than 3 distinct points, or zero area
-  SelfIntersection = 16,  //!< contour crosses itself
-  NotCoplanar = 17,       //!< contours of one slice do not lie on one plane
-  NotParallel = 18,       //!< slices are not parallel
-  DuplicatePlane = 19,    //!< two slice ids lie on one plane
-  EmptyFrame = 20,        //!< a frame has no contours
-  UnknownLabel = 21,      //!< the requested label / contour type is absent
-  MissingCompanion = 22,  //!< a file the input needs beside it is missing (e.g. SliceInfoFile.txt)
-  OutputNotWritable = 23, //!< output folder cannot be created or written
-  NotImplemented = 24,    //!< the requested stage is not available yet
-  BadMesh = 25,           //!< a mesh file that cannot be read or is inconsistent
-  InvalidResult = 26,     //!< a reconstructed frame failed its checks before writing (not closed or manifold,
-                          //!< inward, self-intersecting, volume far from Simpson's discs): nothing is written
+  Internal = 1,            //!< a bug: please report it
+  Usage = 2,               //!< bad command line
+  FileNotFound = 10,       //!< input file or folder missing or unreadable
+  EmptyFile = 11,          //!< input file has no content
+  Parse = 12,              //!< syntax error, truncated file, malformed line
+  Format = 13,             //!< wrong format name, version or units
+  NonFinite = 14,          //!< NaN or infinite coordinate
+  DegenerateContour = 15,  //!< fewer than 3 distinct points, or zero area
+  SelfIntersection = 16,   //!< contour crosses itself
+  NotCoplanar = 17,        //!< contours of one slice do not lie on one plane
+  NotParallel = 18,        //!< slices are not parallel
+  DuplicatePlane = 19,     //!< two slice ids lie on one plane
+  EmptyFrame = 20,         //!< a frame has no contours
+  UnknownLabel = 21,       //!< the requested label / contour type is absent
+  MissingCompanion = 22,   //!< a file the input needs beside it is missing (e.g. SliceInfoFile.txt)
+  OutputNotWritable = 23,  //!< output folder cannot be created or written
+  NotImplemented = 24,     //!< the requested stage is not available yet
+  BadMesh = 25,            //!< a mesh file that cannot be read or is inconsistent
+  InvalidResult = 26,      //!< a reconstructed frame failed its checks before writing (not closed or manifold,
+                           //!< inward, self-intersecting, volume far from Simpson's discs): nothing is written
 };
 
 //! Where in an input a problem was found; unset fields are omitted from messages.
 struct Location {
-  std::string file;   //!< path of the file or folder
-  int line = -1;      //!< 1-based line
-  int frame = -1;     //!< 0-based frame index
-  int slice = -1;     //!< slice id
-  int contour = -1;   //!< 0-based contour index within the frame
+  std::string file;            //!< path of the file or folder
+  int line = -1;               //!< 1-based line
+  int frame = -1;              //!< 0-based frame index
+  int slice = -1;              //!< slice id
+  int contour = -1;            //!< 0-based contour index within the frame
   std::string format() const;  //!< "file: line 3, frame 0, slice 2, contour 1"
 };
 

@@ -20,9 +20,9 @@ struct TriangleMesh {
 
 //! A 4D mesh with 1-to-1 vertex correspondence: one triangle list, one position array per frame.
 struct MeshSequence {
-  std::vector<Triangle> triangles;             //!< shared by every frame
-  std::vector<std::vector<Vec3>> positions;    //!< positions[frame][vertex] (mm)
-  std::vector<double> times_ms;                //!< time of each frame (ms)
+  std::vector<Triangle> triangles;           //!< shared by every frame
+  std::vector<std::vector<Vec3>> positions;  //!< positions[frame][vertex] (mm)
+  std::vector<double> times_ms;              //!< time of each frame (ms)
 
   //! The mesh of one frame (a copy).
   TriangleMesh frame(std::size_t f) const { return {positions.at(f), triangles}; }

@@ -14,6 +14,7 @@ namespace c4d {
 //! byte radix sort of the doubles' bits (bytes where every item agrees skipped), then each run of equal
 //! doubles sorted by id. Where no two items compare equal unless identical, the result is that of
 //! std::sort bit for bit. \pre no NaN among the doubles.
-void sort_pairs(std::vector<std::pair<double, std::uint64_t>>& items, std::vector<std::pair<double, std::uint64_t>>& spare);
+void sort_pairs(std::vector<std::pair<double, std::uint64_t>>& items,
+                std::vector<std::pair<double, std::uint64_t>>& spare);
 
 }  // namespace c4d

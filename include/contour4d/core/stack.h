@@ -48,10 +48,10 @@ struct StackOptions {
 
 //! One contour as read from a file, before validation: frame index, where it came from (for messages).
 struct RawContour {
-  int frame = 0;         //!< frame index (0-based)
-  Contour contour;       //!< label, slice id, points
-  int line = 0;          //!< 1-based line of the file where the contour starts (0: unknown)
-  int index = 0;         //!< 0-based index of the contour within its frame in the file
+  int frame = 0;    //!< frame index (0-based)
+  Contour contour;  //!< label, slice id, points
+  int line = 0;     //!< 1-based line of the file where the contour starts (0: unknown)
+  int index = 0;    //!< 0-based index of the contour within its frame in the file
 };
 
 //! Builds a validated Sequence: derives the stack normal from the contours (area-weighted polygon
@@ -60,9 +60,8 @@ struct RawContour {
 //! and every frame (at least one contour). `frame_count` frames are created (times from
 //! `times_ms` when given, else index × 1 ms).
 //! \throw InvalidInput naming `source` and the frame, slice and contour (and line when known).
-Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count,
-                        const std::vector<double>& times_ms, const std::string& source,
-                        const StackOptions& options = {});
+Sequence build_sequence(const std::vector<RawContour>& contours, int frame_count, const std::vector<double>& times_ms,
+                        const std::string& source, const StackOptions& options = {});
 
 //! The distinct labels of a sequence, sorted.
 std::vector<std::string> labels(const Sequence& seq);

@@ -29,12 +29,16 @@ void smooth_closed_taubin(std::vector<Vec2>& polyline, int passes, double lambda
 
 //! How fit_mask_staircase fits the contour of a point-sampled mask.
 struct StaircaseFitOptions {
-  int informative = 4;           //!< each side of a vertex, the fit window holds at least this many vertices whose grid edge runs more along the curve than across it
-  double max_window_px = 12.0;   //!< largest half-window (arc length, in pixels of the smaller spacing)
-  double max_turn_deg = 60.0;    //!< the window stops where the curve has turned this much (it stays a graph over the tangent)
-  int iterations = 3;            //!< refits, each with the tangents of the previous one
-  double tolerance = 0.1;        //!< a fit crossing an edge (in the inner 60 % of its window) beyond a pixel centre by more than this fraction of the half edge is rejected: the window shrinks
-  int degree = 3;                //!< degree of the local polynomial over the tangent (1..3; 3 follows curvature that varies along the window)
+  int informative =
+      4;  //!< each side of a vertex, the fit window holds at least this many vertices whose grid edge runs more along the curve than across it
+  double max_window_px = 12.0;  //!< largest half-window (arc length, in pixels of the smaller spacing)
+  double max_turn_deg =
+      60.0;            //!< the window stops where the curve has turned this much (it stays a graph over the tangent)
+  int iterations = 3;  //!< refits, each with the tangents of the previous one
+  double tolerance =
+      0.1;  //!< a fit crossing an edge (in the inner 60 % of its window) beyond a pixel centre by more than this fraction of the half edge is rejected: the window shrinks
+  int degree =
+      3;  //!< degree of the local polynomial over the tangent (1..3; 3 follows curvature that varies along the window)
 };
 
 //! Sub-pixel contour of a 0/1 mask from its marching-squares chain (level 0.5): each vertex of

@@ -23,16 +23,23 @@ enum class StaircaseSmoothing {
 
 //! How contours are extracted from label images.
 struct MaskExtractOptions {
-  std::vector<std::string> labels;   //!< labels to extract, by number ("3") or by preset name ("lv"); empty: every non-zero label present
-  std::string preset;                //!< label names: "acdc" (rv=1, myo=2, lv=3), "mnms" (lv=1, myo=2, rv=3) or "" (labels named by number)
-  int slice_axis = -1;               //!< voxel axis (0, 1, 2) the slices are stacked along; -1: the axis with the largest spacing (ties: the last)
-  std::string space = "LPS";         //!< output coordinates: "LPS" (as the image) or "RAS" (x and y negated)
-  double presmooth_sigma_px = 0.0;   //!< Gaussian σ (pixels) applied to each label's 0/1 mask before marching squares; 0: the raw mask
-  StaircaseSmoothing staircase = StaircaseSmoothing::EdgeFit;  //!< smoothing of the pixel staircase (EdgeFit needs presmooth_sigma_px = 0, else Taubin is used)
-  int taubin_passes = 10;            //!< Taubin λ|μ passes on each chain (StaircaseSmoothing::Taubin, or after a presmoothed mask); 0: none
-  double resample_mm = 1.0;          //!< spacing (mm) of the evenly resampled contour points; 0: keep the marching-squares vertices
-  int min_points = 8;                //!< at least this many points per resampled contour
-  StackOptions stack;                //!< validation tolerances for build_sequence
+  std::vector<std::string>
+      labels;  //!< labels to extract, by number ("3") or by preset name ("lv"); empty: every non-zero label present
+  std::string
+      preset;  //!< label names: "acdc" (rv=1, myo=2, lv=3), "mnms" (lv=1, myo=2, rv=3) or "" (labels named by number)
+  int slice_axis =
+      -1;  //!< voxel axis (0, 1, 2) the slices are stacked along; -1: the axis with the largest spacing (ties: the last)
+  std::string space = "LPS";  //!< output coordinates: "LPS" (as the image) or "RAS" (x and y negated)
+  double presmooth_sigma_px =
+      0.0;  //!< Gaussian σ (pixels) applied to each label's 0/1 mask before marching squares; 0: the raw mask
+  StaircaseSmoothing staircase = StaircaseSmoothing::
+      EdgeFit;  //!< smoothing of the pixel staircase (EdgeFit needs presmooth_sigma_px = 0, else Taubin is used)
+  int taubin_passes =
+      10;  //!< Taubin λ|μ passes on each chain (StaircaseSmoothing::Taubin, or after a presmoothed mask); 0: none
+  double resample_mm =
+      1.0;             //!< spacing (mm) of the evenly resampled contour points; 0: keep the marching-squares vertices
+  int min_points = 8;  //!< at least this many points per resampled contour
+  StackOptions stack;  //!< validation tolerances for build_sequence
 };
 
 //! The label value of every requested label (in option order; every present non-zero label when

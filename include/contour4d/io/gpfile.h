@@ -23,25 +23,25 @@ struct GpFileOptions {
 
 //! One slice of SliceInfoFile.txt: a DICOM image plane (mm, LPS).
 struct GpFileSlice {
-  int id = 0;                 //!< slice id (column 5 of the GPFiles)
-  std::string image;          //!< DICOM file name of the slice
-  Vec3 position;              //!< ImagePositionPatient: centre of the first pixel (mm)
-  Vec3 row;                   //!< first ImageOrientationPatient triplet (unit direction along a row)
-  Vec3 column;                //!< second ImageOrientationPatient triplet (unit direction along a column)
-  Vec3 normal;                //!< row × column (unit)
-  bool used = false;          //!< true when its contours went into the sequence
-  std::string note;           //!< why it was skipped, when it was
+  int id = 0;         //!< slice id (column 5 of the GPFiles)
+  std::string image;  //!< DICOM file name of the slice
+  Vec3 position;      //!< ImagePositionPatient: centre of the first pixel (mm)
+  Vec3 row;           //!< first ImageOrientationPatient triplet (unit direction along a row)
+  Vec3 column;        //!< second ImageOrientationPatient triplet (unit direction along a column)
+  Vec3 normal;        //!< row × column (unit)
+  bool used = false;  //!< true when its contours went into the sequence
+  std::string note;   //!< why it was skipped, when it was
 };
 
 //! What was read from a GPFile folder.
 struct GpFileResult {
-  Sequence sequence;                   //!< validated stack of the chosen contour types
-  std::vector<GpFileSlice> slices;     //!< every slice of SliceInfoFile.txt, by id
-  std::vector<int> slices_used;        //!< ids of the slices in the sequence
-  std::vector<int> slices_skipped;     //!< ids of slices with chosen contours that were dropped
+  Sequence sequence;                     //!< validated stack of the chosen contour types
+  std::vector<GpFileSlice> slices;       //!< every slice of SliceInfoFile.txt, by id
+  std::vector<int> slices_used;          //!< ids of the slices in the sequence
+  std::vector<int> slices_skipped;       //!< ids of slices with chosen contours that were dropped
   std::vector<std::string> frame_files;  //!< file name of each frame
-  std::vector<std::string> notes;      //!< human-readable lines: what was used, skipped, closed
-  std::vector<ContourRepair> repairs;  //!< flaws fixed (GpFileOptions::repair)
+  std::vector<std::string> notes;        //!< human-readable lines: what was used, skipped, closed
+  std::vector<ContourRepair> repairs;    //!< flaws fixed (GpFileOptions::repair)
 };
 
 //! User-facing label of a biv-me contour type: lower case, '-' for '_', "SAX_" dropped,

@@ -16,19 +16,20 @@ namespace c4d {
 //! One 3D label image (one time frame). Voxel (i, j, k) lies at world point
 //! origin + D · (i·spacing[0], j·spacing[1], k·spacing[2]) (LPS mm), D the direction matrix.
 struct LabelVolume {
-  std::array<int, 3> dims{0, 0, 0};              //!< voxels along i, j, k
-  std::array<double, 3> spacing{1, 1, 1};        //!< voxel size along i, j, k (mm)
-  std::array<double, 3> origin{0, 0, 0};         //!< world position of voxel (0, 0, 0) (LPS mm)
-  std::array<double, 9> direction{1, 0, 0, 0, 1, 0, 0, 0, 1};  //!< row-major 3×3; column a is the world direction of axis a
-  std::vector<int32_t> labels;                   //!< dims[0]·dims[1]·dims[2] values, i fastest: labels[i + dims[0]·(j + dims[1]·k)]
+  std::array<int, 3> dims{0, 0, 0};        //!< voxels along i, j, k
+  std::array<double, 3> spacing{1, 1, 1};  //!< voxel size along i, j, k (mm)
+  std::array<double, 3> origin{0, 0, 0};   //!< world position of voxel (0, 0, 0) (LPS mm)
+  std::array<double, 9> direction{1, 0, 0, 0, 1,
+                                  0, 0, 0, 1};  //!< row-major 3×3; column a is the world direction of axis a
+  std::vector<int32_t> labels;  //!< dims[0]·dims[1]·dims[2] values, i fastest: labels[i + dims[0]·(j + dims[1]·k)]
 };
 
 //! The frames of a label series, in time order, with one geometry.
 struct LabelSeries {
-  std::vector<LabelVolume> frames;   //!< one volume per time frame, same dims and geometry
-  std::vector<double> times_ms;      //!< per frame; frame index × 1 ms (label images carry no reliable timing)
-  std::vector<std::string> files;    //!< the file each frame came from (a 4D file repeats)
-  std::string source;                //!< the INPUT as given (for messages)
+  std::vector<LabelVolume> frames;  //!< one volume per time frame, same dims and geometry
+  std::vector<double> times_ms;     //!< per frame; frame index × 1 ms (label images carry no reliable timing)
+  std::vector<std::string> files;   //!< the file each frame came from (a 4D file repeats)
+  std::string source;               //!< the INPUT as given (for messages)
 };
 
 //! True when `path` names a label image by its extension (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd).
@@ -63,9 +64,9 @@ enum class ImagePixel { Int16, Int32, Float32 };
 //! How write_label_volume writes (a helper for tests and demos).
 struct ImageWriteOptions {
   ImagePixel pixel = ImagePixel::Int16;  //!< component type on disk
-  double value_scale = 1.0;              //!< value written = label × value_scale (tests write non-integer images this way)
-  bool two_d = false;                    //!< write a 2D image (needs dims[2] == 1; tests of bad input)
-  bool compress = true;                  //!< compress when the format can (.nii.gz is always compressed)
+  double value_scale = 1.0;  //!< value written = label × value_scale (tests write non-integer images this way)
+  bool two_d = false;        //!< write a 2D image (needs dims[2] == 1; tests of bad input)
+  bool compress = true;      //!< compress when the format can (.nii.gz is always compressed)
 };
 
 //! Writes one volume (3D) or several (one 4D file, frames along t) with ITK; the format follows

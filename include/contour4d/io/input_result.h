@@ -14,10 +14,10 @@ namespace c4d {
 //! What was read, and notes for the user (which slices and frames were used or skipped, why).
 struct InputResult {
   Sequence sequence;
-  std::string format;               //!< "contour4d-json", "gpfile", ...
-  std::vector<std::string> notes;   //!< human-readable lines for the summary
-  std::string timing;               //!< where frame times come from: "data", "--frame-ms", "--cycle-ms",
-                                    //!< "single frame" or "unknown" (frames numbered 0, 1, 2, ... ms)
+  std::string format;                  //!< "contour4d-json", "gpfile", ...
+  std::vector<std::string> notes;      //!< human-readable lines for the summary
+  std::string timing;                  //!< where frame times come from: "data", "--frame-ms", "--cycle-ms",
+                                       //!< "single frame" or "unknown" (frames numbered 0, 1, 2, ... ms)
   std::vector<ContourRepair> repairs;  //!< contour flaws fixed on reading (InputOptions::strict = false)
 };
 

@@ -11,8 +11,8 @@ namespace c4d {
 
 //! A named set of (label name, label value) pairs.
 struct LabelPreset {
-  std::string name;                                  //!< e.g. "acdc"
-  std::vector<std::pair<std::string, int>> labels;   //!< (name, value), by value
+  std::string name;                                 //!< e.g. "acdc"
+  std::vector<std::pair<std::string, int>> labels;  //!< (name, value), by value
 };
 
 //! The presets: acdc (RV = 1, MYO = 2, LV = 3) and mnms (LV = 1, MYO = 2, RV = 3). Names are lower case.

@@ -19,14 +19,14 @@ struct CorrespondenceOptions {
 
 //! Result of check_correspondence.
 struct CorrespondenceReport {
-  bool same_vertex_count = true;              //!< every frame has frame 0's vertex count
-  bool same_triangles = true;                 //!< every frame has frame 0's triangle list, in order
-  int first_differing_frame = -1;             //!< first frame that differs from frame 0 (-1: none)
-  std::string difference;                     //!< how it differs, in words
-  std::vector<double> median_edge_change_pct; //!< per frame: median |l − l_ref| / l_ref over edges (%)
-  std::vector<double> edge_jump_pct;          //!< per frame: % of edges whose length changed by > jump_factor
-  std::vector<int> suspicious_frames;         //!< frames whose vertices look permuted
-  std::vector<std::string> faults;            //!< one sentence per fault
+  bool same_vertex_count = true;               //!< every frame has frame 0's vertex count
+  bool same_triangles = true;                  //!< every frame has frame 0's triangle list, in order
+  int first_differing_frame = -1;              //!< first frame that differs from frame 0 (-1: none)
+  std::string difference;                      //!< how it differs, in words
+  std::vector<double> median_edge_change_pct;  //!< per frame: median |l − l_ref| / l_ref over edges (%)
+  std::vector<double> edge_jump_pct;           //!< per frame: % of edges whose length changed by > jump_factor
+  std::vector<int> suspicious_frames;          //!< frames whose vertices look permuted
+  std::vector<std::string> faults;             //!< one sentence per fault
 
   bool ok() const { return faults.empty(); }
 };

@@ -25,14 +25,15 @@ DistanceStats summarize_distances(const std::vector<double>& distances);
 
 //! A surface sample point with the area it stands for (0 for vertices: they only count in max).
 struct SurfaceSample {
-  Vec3 point;          //!< position (mm)
-  double area = 0.0;   //!< quadrature weight (mm²)
+  Vec3 point;         //!< position (mm)
+  double area = 0.0;  //!< quadrature weight (mm²)
 };
 
 //! How sample points are placed on a surface: deterministic, no random numbers.
 struct SurfaceSamplingOptions {
-  double spacing = 0.5;     //!< target sample spacing (mm): a triangle whose longest edge is L is split into n² similar sub-triangles, n = ceil(L / spacing)
-  int max_subdivision = 16; //!< cap on n per triangle (at most 256 samples per triangle)
+  double spacing =
+      0.5;  //!< target sample spacing (mm): a triangle whose longest edge is L is split into n² similar sub-triangles, n = ceil(L / spacing)
+  int max_subdivision = 16;  //!< cap on n per triangle (at most 256 samples per triangle)
 };
 
 //! Every vertex (weight 0) plus the centroid of each sub-triangle of a regular barycentric

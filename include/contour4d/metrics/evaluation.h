@@ -10,6 +10,7 @@
 
 #include "contour4d/core/stack.h"
 #include "contour4d/io/mesh_output.h"
+#include "contour4d/metrics/normal_deviation.h"
 #include "contour4d/metrics/conformity.h"
 #include "contour4d/metrics/correspondence.h"
 #include "contour4d/metrics/distance.h"
@@ -30,26 +31,27 @@ struct EvaluationOptions {
 
 //! The measures of one frame; optional parts are absent when their input was not given.
 struct FrameEvaluation {
-  int frame = 0;                              //!< 0-based frame index
-  double time_ms = 0.0;                       //!< frame time (ms)
-  TopologyReport topology;                    //!< validity of the surface
-  AngleQuality quality;                       //!< Tables 3 and 4
-  double volume = 0.0;                        //!< signed volume of the mesh (mm³)
-  std::optional<DistanceStats> conformity;    //!< contours → mesh (mm), when contours are given
-  std::optional<DiscVolume> simpson;          //!< disc volume of the frame's contours, when given
-  std::optional<SurfaceComparison> accuracy;  //!< mesh ↔ truth (mm), when a truth is given
+  int frame = 0;                                   //!< 0-based frame index
+  double time_ms = 0.0;                            //!< frame time (ms)
+  TopologyReport topology;                         //!< validity of the surface
+  AngleQuality quality;                            //!< Tables 3 and 4
+  double volume = 0.0;                             //!< signed volume of the mesh (mm³)
+  std::optional<DistanceStats> conformity;         //!< contours → mesh (mm), when contours are given
+  std::optional<DiscVolume> simpson;               //!< disc volume of the frame's contours, when given
+  std::optional<SurfaceComparison> accuracy;       //!< mesh ↔ truth (mm), when a truth is given
   std::optional<DistanceStats> contours_to_truth;  //!< contours → truth (mm): Table 5's reference column
+  std::optional<NormalDeviation> normals;          //!< facet normals against the truth's (degrees), when given
 };
 
 //! The whole evaluation.
 struct Evaluation {
-  std::vector<FrameEvaluation> frames;   //!< one per mesh frame, in order
-  CorrespondenceReport correspondence;   //!< across frames
-  EjectionFraction mesh_ef;              //!< from the mesh volumes
+  std::vector<FrameEvaluation> frames;         //!< one per mesh frame, in order
+  CorrespondenceReport correspondence;         //!< across frames
+  EjectionFraction mesh_ef;                    //!< from the mesh volumes
   std::optional<EjectionFraction> simpson_ef;  //!< from the disc volumes, when contours are given
-  std::vector<std::string> faults;       //!< every fault, prefixed with its frame ("frame 3: ...")
-  std::vector<std::string> notes;        //!< remarks that are not faults (frame count mismatches, ...)
-  double conformity_step = 0.2;          //!< contour sampling interval used (mm)
+  std::vector<std::string> faults;             //!< every fault, prefixed with its frame ("frame 3: ...")
+  std::vector<std::string> notes;              //!< remarks that are not faults (frame count mismatches, ...)
+  double conformity_step = 0.2;                //!< contour sampling interval used (mm)
 
   //! A frame has a topology fault or the vertex correspondence is broken (what `--check` tests).
   bool has_topology_fault() const;

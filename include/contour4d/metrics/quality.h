@@ -17,16 +17,16 @@ struct AngleQualityOptions {
 //! Angle statistics of one mesh. Bins are half-open [40,50), [50,60), [60,70), [70,80); the
 //! percentages count angles (three per triangle), as in Table 3.
 struct AngleQuality {
-  std::size_t triangles = 0;       //!< triangles measured
-  double pct_40_50 = 0.0;          //!< % of angles in [40°, 50°)
-  double pct_50_60 = 0.0;          //!< % of angles in [50°, 60°)
-  double pct_60_70 = 0.0;          //!< % of angles in [60°, 70°)
-  double pct_70_80 = 0.0;          //!< % of angles in [70°, 80°)
-  double pct_40_80 = 0.0;          //!< % of angles in [40°, 80°): the sum of the four bins
-  std::size_t bad_triangles = 0;   //!< triangles with an angle below bad_angle_deg (zero-area ones included)
-  double bad_pct = 0.0;            //!< bad_triangles as % of all triangles
-  double min_angle_deg = 0.0;      //!< smallest angle of the mesh (degrees); 0 for a zero-area triangle
-  double max_angle_deg = 0.0;      //!< largest angle of the mesh (degrees)
+  std::size_t triangles = 0;      //!< triangles measured
+  double pct_40_50 = 0.0;         //!< % of angles in [40°, 50°)
+  double pct_50_60 = 0.0;         //!< % of angles in [50°, 60°)
+  double pct_60_70 = 0.0;         //!< % of angles in [60°, 70°)
+  double pct_70_80 = 0.0;         //!< % of angles in [70°, 80°)
+  double pct_40_80 = 0.0;         //!< % of angles in [40°, 80°): the sum of the four bins
+  std::size_t bad_triangles = 0;  //!< triangles with an angle below bad_angle_deg (zero-area ones included)
+  double bad_pct = 0.0;           //!< bad_triangles as % of all triangles
+  double min_angle_deg = 0.0;     //!< smallest angle of the mesh (degrees); 0 for a zero-area triangle
+  double max_angle_deg = 0.0;     //!< largest angle of the mesh (degrees)
 };
 
 //! Angles from atan2(|a×b|, a·b), accurate for needle triangles too. Triangles with an index out

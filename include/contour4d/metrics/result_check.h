@@ -16,8 +16,8 @@ namespace c4d {
 
 //! Options of check_result.
 struct ResultCheckOptions {
-  bool closed = true;  //!< the surface must be closed (false for CapStyle::Open: open ends allowed,
-                       //!< and the volume is not compared)
+  bool closed = true;              //!< the surface must be closed (false for CapStyle::Open: open ends allowed,
+                                   //!< and the volume is not compared)
   bool self_intersections = true;  //!< run the triangle-triangle intersection test (exact predicates)
   //! Largest |mesh volume / Simpson's volume − 1| accepted. Simpson's discs (area × slice thickness,
   //! half a gap beyond each end slice) and a smooth surface through the same contours differ by the caps
@@ -29,8 +29,8 @@ struct ResultCheckOptions {
 //! What check_result found in one frame.
 struct FrameCheck {
   int frame = 0;
-  double volume = 0.0;          //!< signed volume of the mesh (mm³)
-  double simpson_volume = 0.0;  //!< Simpson's discs of the frame's contours (mm³; 0 when not compared)
+  double volume = 0.0;                 //!< signed volume of the mesh (mm³)
+  double simpson_volume = 0.0;         //!< Simpson's discs of the frame's contours (mm³; 0 when not compared)
   std::size_t self_intersections = 0;  //!< crossing triangle pairs
   std::vector<std::string> faults;     //!< one sentence per fault; empty when the frame is valid
   bool ok() const { return faults.empty(); }

@@ -20,9 +20,9 @@ namespace c4d {
 struct SurfaceWalk {
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
-  std::vector<std::int32_t> patch;          //!< per triangle
-  std::vector<std::uint32_t> start, tris;   //!< triangles of vertex v: tris[start[v] .. start[v + 1])
-  std::vector<std::array<double, 4>> balls; //!< per triangle: a ball holding it (centroid, radius)
+  std::vector<std::int32_t> patch;           //!< per triangle
+  std::vector<std::uint32_t> start, tris;    //!< triangles of vertex v: tris[start[v] .. start[v + 1])
+  std::vector<std::array<double, 4>> balls;  //!< per triangle: a ball holding it (centroid, radius)
   //! Per triangle: its plane, unit normal n and offset n·a, and the largest |n·v − offset| of its
   //! corners v as computed (the plane's own rounding, large only on a sliver); all zero for a
   //! degenerate triangle.

@@ -29,26 +29,26 @@ struct ComponentTopology {
 
 //! Everything check_topology found. A fault is also written in words in `faults`.
 struct TopologyReport {
-  std::size_t vertices = 0;               //!< positions
-  std::size_t triangles = 0;              //!< triangles
-  std::size_t edges = 0;                  //!< distinct undirected edges
-  std::size_t invalid_triangles = 0;      //!< index out of range or repeated in one triangle (ignored below)
-  std::size_t degenerate_triangles = 0;   //!< zero area (collinear corners)
-  std::size_t duplicate_triangles = 0;    //!< same three vertices as an earlier triangle
-  std::size_t duplicate_vertices = 0;     //!< same position as an earlier vertex (bitwise)
-  std::size_t unreferenced_vertices = 0;  //!< used by no triangle
-  std::size_t boundary_edges = 0;         //!< edges with one triangle: the mesh has a hole
-  std::size_t nonmanifold_edges = 0;      //!< edges with more than two triangles
-  std::size_t nonmanifold_vertices = 0;   //!< vertices whose triangles form more than one fan
-  std::size_t misoriented_edges = 0;      //!< two-triangle edges traversed the same way by both
-  std::size_t flipped_triangles = 0;      //!< triangles oriented against the majority of their component
-  bool orientable = true;                 //!< false when no consistent orientation exists (Möbius-like)
+  std::size_t vertices = 0;                   //!< positions
+  std::size_t triangles = 0;                  //!< triangles
+  std::size_t edges = 0;                      //!< distinct undirected edges
+  std::size_t invalid_triangles = 0;          //!< index out of range or repeated in one triangle (ignored below)
+  std::size_t degenerate_triangles = 0;       //!< zero area (collinear corners)
+  std::size_t duplicate_triangles = 0;        //!< same three vertices as an earlier triangle
+  std::size_t duplicate_vertices = 0;         //!< same position as an earlier vertex (bitwise)
+  std::size_t unreferenced_vertices = 0;      //!< used by no triangle
+  std::size_t boundary_edges = 0;             //!< edges with one triangle: the mesh has a hole
+  std::size_t nonmanifold_edges = 0;          //!< edges with more than two triangles
+  std::size_t nonmanifold_vertices = 0;       //!< vertices whose triangles form more than one fan
+  std::size_t misoriented_edges = 0;          //!< two-triangle edges traversed the same way by both
+  std::size_t flipped_triangles = 0;          //!< triangles oriented against the majority of their component
+  bool orientable = true;                     //!< false when no consistent orientation exists (Möbius-like)
   std::vector<ComponentTopology> components;  //!< by first triangle index
-  int genus = -1;                         //!< sum of the components' genus; -1 when one is undefined
-  bool self_intersections_checked = false;  //!< the intersection test was run
-  std::size_t self_intersections = 0;     //!< pairs of triangles that intersect beyond a shared vertex or edge
-  double signed_volume = 0.0;             //!< enclosed volume (mm³), positive when facing outward
-  std::vector<std::string> faults;        //!< one sentence per fault, e.g. "12 boundary edges (a hole)"
+  int genus = -1;                             //!< sum of the components' genus; -1 when one is undefined
+  bool self_intersections_checked = false;    //!< the intersection test was run
+  std::size_t self_intersections = 0;         //!< pairs of triangles that intersect beyond a shared vertex or edge
+  double signed_volume = 0.0;                 //!< enclosed volume (mm³), positive when facing outward
+  std::vector<std::string> faults;            //!< one sentence per fault, e.g. "12 boundary edges (a hole)"
 
   bool closed() const { return boundary_edges == 0; }
   bool edge_manifold() const { return nonmanifold_edges == 0; }
@@ -68,7 +68,8 @@ TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& o
 //! Number of pairs of triangles that intersect other than in a shared vertex or shared edge
 //! (exact predicates; box-intersection prefilter). Zero-area and invalid triangles are skipped.
 //! At most `max_pairs_listed` pairs are returned in `pairs` (triangle indices, smaller first).
-std::size_t count_self_intersections(const TriangleMesh& mesh, std::vector<std::pair<std::size_t, std::size_t>>* pairs = nullptr,
+std::size_t count_self_intersections(const TriangleMesh& mesh,
+                                     std::vector<std::pair<std::size_t, std::size_t>>* pairs = nullptr,
                                      std::size_t max_pairs_listed = 8);
 
 //! The same, counting only the pairs in which at least one triangle is flagged in `only` (per

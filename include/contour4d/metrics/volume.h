@@ -35,11 +35,11 @@ std::vector<DiscVolume> simpson_volumes(const Sequence& seq);
 
 //! End-diastolic and end-systolic volumes and the ejection fraction of a volume curve.
 struct EjectionFraction {
-  double edv = 0.0;    //!< largest volume (mm³)
-  double esv = 0.0;    //!< smallest volume (mm³)
-  double ef_pct = 0.0; //!< (EDV − ESV) / EDV × 100 (%); 0 when EDV <= 0
-  int ed_frame = -1;   //!< frame of EDV (first one on ties)
-  int es_frame = -1;   //!< frame of ESV (first one on ties)
+  double edv = 0.0;     //!< largest volume (mm³)
+  double esv = 0.0;     //!< smallest volume (mm³)
+  double ef_pct = 0.0;  //!< (EDV − ESV) / EDV × 100 (%); 0 when EDV <= 0
+  int ed_frame = -1;    //!< frame of EDV (first one on ties)
+  int es_frame = -1;    //!< frame of ESV (first one on ties)
 };
 
 //! EDV = max, ESV = min over the frames. Empty input gives frames -1 and zeros.

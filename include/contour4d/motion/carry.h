@@ -27,26 +27,26 @@ namespace c4d {
 
 //! Options of carry_frames.
 struct CarryOptions {
-  double threshold = 0.3;      //!< similarity index for a chain↔contour match (Lim et al.: 30 %)
-  int relax_rounds = 6;        //!< rounds of tangential smoothing, each followed by a projection
-  double relax_step = 0.5;     //!< fraction of the way to the neighbours' centroid, in the tangent plane, per round
-  double sheet_cos = 0.2;      //!< a vertex lands on the surface only where the landing triangle's normal and the
-                               //!< vertex normal make an angle with at least this cosine (about 78°)
-  int untangle_rounds = 4;     //!< rounds of local untangling where triangles cross after the relaxation (angle_repair.h)
+  double threshold = 0.3;   //!< similarity index for a chain↔contour match (Lim et al.: 30 %)
+  int relax_rounds = 6;     //!< rounds of tangential smoothing, each followed by a projection
+  double relax_step = 0.5;  //!< fraction of the way to the neighbours' centroid, in the tangent plane, per round
+  double sheet_cos = 0.2;   //!< a vertex lands on the surface only where the landing triangle's normal and the
+                            //!< vertex normal make an angle with at least this cosine (about 78°)
+  int untangle_rounds = 4;  //!< rounds of local untangling where triangles cross after the relaxation (angle_repair.h)
   double angle_target_deg = 32.0;  //!< last, the vertices of triangles with an angle below this move within the surface
                                    //!< to raise their ring's smallest angle (angle_repair.h)
 };
 
 //! Per-frame figures of carry_frames.
 struct CarryFrameReport {
-  int matched_contours = 0;          //!< frame-0 chains matched one-to-one to this frame's contours
-  int unmatched_chains = 0;          //!< chains without a partner (their contour split, merged or vanished)
-  std::size_t fixed_vertices = 0;    //!< chain vertices put on this frame's contours
-  std::size_t crossings = 0;         //!< crossing triangle pairs left by the untangling (0: none, or not tested)
-  std::size_t angle_repairs = 0;     //!< vertex moves of the small-angle repair
-  std::size_t off_sheet = 0;         //!< projections refused in the last round (landing on a sheet facing away)
-  double projection_mean = 0.0;      //!< mean distance (mm) moved by the first projection
-  double projection_max = 0.0;       //!< largest of the same
+  int matched_contours = 0;        //!< frame-0 chains matched one-to-one to this frame's contours
+  int unmatched_chains = 0;        //!< chains without a partner (their contour split, merged or vanished)
+  std::size_t fixed_vertices = 0;  //!< chain vertices put on this frame's contours
+  std::size_t crossings = 0;       //!< crossing triangle pairs left by the untangling (0: none, or not tested)
+  std::size_t angle_repairs = 0;   //!< vertex moves of the small-angle repair
+  std::size_t off_sheet = 0;       //!< projections refused in the last round (landing on a sheet facing away)
+  double projection_mean = 0.0;    //!< mean distance (mm) moved by the first projection
+  double projection_max = 0.0;     //!< largest of the same
 };
 
 //! What carry_frames did.

@@ -15,9 +15,9 @@ namespace c4d {
 
 //! A loop of mesh vertices lying on one slice plane: the mesh's copy of an input contour.
 struct Chain {
-  int slice = 0;                     //!< slice id
-  Plane plane;                       //!< the slice's plane
-  std::vector<std::uint32_t> loop;   //!< vertices in order around the loop
+  int slice = 0;                    //!< slice id
+  Plane plane;                      //!< the slice's plane
+  std::vector<std::uint32_t> loop;  //!< vertices in order around the loop
 };
 
 //! The contour chains of `mesh` (built through the contours of one frame of `seq`): edges with both
@@ -28,9 +28,6 @@ std::vector<Chain> find_chains(const Sequence& seq, const TriangleMesh& mesh);
 //! The contour j that contour i matches one-to-one: i's only partner over `threshold` is j, and j's only
 //! partner is i (sim[i][j]: similarity index); −1 when there is none.
 int one_to_one_partner(const std::vector<std::vector<double>>& sim, std::size_t i, double threshold);
-
-//! The point of segment [a, b] closest to q.
-Vec3 closest_on_segment(Vec3 a, Vec3 b, Vec3 q);
 
 //! Closest point to q on the closed polyline `loop`. `hint` is the segment found last time (−1: none,
 //! then every segment is tried); the search walks from it while a neighbouring segment is closer, so a

@@ -25,27 +25,27 @@ enum class MorphMethod {
 //! (src/motion/morph*.cpp; docs/algorithms/morph.md gives the figures behind each value).
 struct MorphOptions {
   MorphMethod method = MorphMethod::RbfProject;  //!< see MorphMethod
-  int rbf_steps = 10;              //!< RBF sub-steps against crossing paths (paper: 10); RbfProject uses 1
-  int sources_per_contour = 48;    //!< chain points per matched contour used as RBF sources (Rbf; RbfProject's
-                                   //!< first guess takes 24: the projection and relaxation refine the rest)
-  double threshold = 0.3;          //!< similarity for a chain↔contour match (paper: 30 %)
+  int rbf_steps = 10;                 //!< RBF sub-steps against crossing paths (paper: 10); RbfProject uses 1
+  int sources_per_contour = 48;       //!< chain points per matched contour used as RBF sources (Rbf; RbfProject's
+                                      //!< first guess takes 24: the projection and relaxation refine the rest)
+  double threshold = 0.3;             //!< similarity for a chain↔contour match (paper: 30 %)
   bool vertical_deformation = false;  //!< Lim et al.'s sine vertical pre-deformation (eq. 10, Table 1) at slices whose
                                       //!< contours split or merge, before the matching (vertical_deformation.h)
-  VerticalDeformationOptions vertical;  //!< its options
+  VerticalDeformationOptions vertical;           //!< its options
   AngleRepairOptions angle_repair{.passes = 8};  //!< RbfProject, after the relaxation: vertices of triangles with an
-                                    //!< angle below angle_repair.target_deg move within the surface to maximise their
-                                    //!< ring's smallest angle (passes = 0: off; 8 passes, not the surface's 4: the left
-                                    //!< heart's ES saddle at edge 1 mm keeps 9 triangles below 25° with 4).
-                                    //!< reconstruct_4d gives frame 0's surface the same target
+      //!< angle below angle_repair.target_deg move within the surface to maximise their
+      //!< ring's smallest angle (passes = 0: off; 8 passes, not the surface's 4: the left
+      //!< heart's ES saddle at edge 1 mm keeps 9 triangles below 25° with 4).
+      //!< reconstruct_4d gives frame 0's surface the same target
 };
 
 //! A 2D contour topology change on one slice between two frames.
 struct SliceEvent {
-  int frame = 0;       //!< the later frame
-  int slice = 0;       //!< slice id
-  std::string kind;    //!< "split", "merge", "appear", "vanish" or "change"
-  int before = 0;      //!< contours (mesh section loops) on the slice in the earlier frame
-  int after = 0;       //!< contours on the slice in the later frame
+  int frame = 0;     //!< the later frame
+  int slice = 0;     //!< slice id
+  std::string kind;  //!< "split", "merge", "appear", "vanish" or "change"
+  int before = 0;    //!< contours (mesh section loops) on the slice in the earlier frame
+  int after = 0;     //!< contours on the slice in the later frame
 };
 
 //! Miara et al. Fig. 14: a sub-mesh between two adjacent slices serves over a run of frames; a
@@ -58,12 +58,12 @@ struct SubMeshLifetime {
 
 //! Per-frame figures of the morph.
 struct MorphFrameReport {
-  int matched = 0;             //!< section↔contour matches used as RBF constraints
-  int sources = 0;             //!< RBF source points
+  int matched = 0;                     //!< section↔contour matches used as RBF constraints
+  int sources = 0;                     //!< RBF source points
   std::size_t intersecting_pairs = 0;  //!< triangle pairs still intersecting after untangling (RbfProject)
-  std::size_t angle_repairs = 0;  //!< vertex moves of the small-angle repair
-  std::size_t sliding = 0;     //!< contour-chain vertices kept on their contour (RbfProject)
-  int plane_snapped = 0;       //!< vertices put on a contour where an edge crosses its plane (RbfProject)
+  std::size_t angle_repairs = 0;       //!< vertex moves of the small-angle repair
+  std::size_t sliding = 0;             //!< contour-chain vertices kept on their contour (RbfProject)
+  int plane_snapped = 0;               //!< vertices put on a contour where an edge crosses its plane (RbfProject)
   std::size_t fit_moved = 0;   //!< vertices moved by the last contour fit (RbfProject; 0: none, or no harmless fit)
   double fit_max_before = 0;   //!< contour fit: largest contour-sample distance to the mesh before it (mm)
   double fit_max_after = 0;    //!< the same after it (equal to fit_max_before when nothing moved)
@@ -89,8 +89,8 @@ MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0, con
 //! The same, with frame t's own surface given by `surface(t)` when it is first needed (RbfProject; Rbf needs
 //! none); called from the calling thread only, frames in increasing order.
 MeshSequence morph_sequence(const Sequence& seq, const TriangleMesh& frame0,
-                            const std::function<const TriangleMesh&(std::size_t)>& surface, const MorphOptions& options = {},
-                            MorphReport* report = nullptr);
+                            const std::function<const TriangleMesh&(std::size_t)>& surface,
+                            const MorphOptions& options = {}, MorphReport* report = nullptr);
 
 //! Sub-mesh lifetimes from the contour counts of each slice over the frames.
 std::vector<SubMeshLifetime> submesh_lifetimes(const Sequence& seq);

@@ -11,9 +11,9 @@ namespace c4d {
 
 //! Options of the RBF interpolant.
 struct RbfOptions {
-  bool affine = true;         //!< add an affine term (exact for rigid and affine motion; the paper has none)
-  double c_scale = 1.0;       //!< c_k = c_scale × distance from source k to its nearest other source (mm)
-  double min_c = 1e-3;        //!< lower bound of c_k (mm), for coincident sources
+  bool affine = true;    //!< add an affine term (exact for rigid and affine motion; the paper has none)
+  double c_scale = 1.0;  //!< c_k = c_scale × distance from source k to its nearest other source (mm)
+  double min_c = 1e-3;   //!< lower bound of c_k (mm), for coincident sources
 };
 
 //! f(x) = x + Σ_k w_k φ_k(|x − x_k|) (+ a + A x), φ_k(r) = sqrt(r² + c_k²), fitted so that f(src_k) = dst_k.

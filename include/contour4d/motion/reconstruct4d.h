@@ -23,7 +23,7 @@ enum class AllFramesMethod {
 //! Options of the 4D reconstruction.
 struct Reconstruct4DOptions {
   AllFramesMethod all_frames = AllFramesMethod::Morph;  //!< the all-frames stage
-  CarryOptions carry;      //!< AllFramesMethod::Carry
+  CarryOptions carry;                                   //!< AllFramesMethod::Carry
   SurfaceOptions surface;  //!< the one-frame surface. Frame 0's, the carried mesh, is built with remeshed bands
                            //!< (ours) and the morph's small-angle target (32°): it starts with even triangles
                            //!< where the morph keeps them; the later frames' surfaces are projection targets

@@ -43,12 +43,12 @@ enum class RidgePath {
 
 //! Options of the three steps. Defaults follow the paper where it gives a value.
 struct VerticalDeformationOptions {
-  MotionRule rule = MotionRule::Auto;   //!< see MotionRule
-  double tie_tolerance = 1e-3;          //!< Similarity/Auto: score differences below this are a tie (then counts)
-  double band = 0.10;                   //!< middle band: |dB − dC| ≤ band × max(dB, dC) (paper: 10 %)
-  RidgePath path = RidgePath::Greedy;   //!< see RidgePath
-  double slab_margin = 0.25;            //!< ridge path stays within the incident/complement slab ± this × their gap
-  std::array<double, 6> r_upward{0.2, 0.4, 0.7, 1.2, 0.5, 0.2};         //!< Table 1, slices 1 (top) .. 6
+  MotionRule rule = MotionRule::Auto;  //!< see MotionRule
+  double tie_tolerance = 1e-3;         //!< Similarity/Auto: score differences below this are a tie (then counts)
+  double band = 0.10;                  //!< middle band: |dB − dC| ≤ band × max(dB, dC) (paper: 10 %)
+  RidgePath path = RidgePath::Greedy;  //!< see RidgePath
+  double slab_margin = 0.25;           //!< ridge path stays within the incident/complement slab ± this × their gap
+  std::array<double, 6> r_upward{0.2, 0.4, 0.7, 1.2, 0.5, 0.2};          //!< Table 1, slices 1 (top) .. 6
   std::array<double, 6> r_downward{-0.2, -0.5, -1.2, -0.7, -0.4, -0.2};  //!< Table 1, slices 1 (top) .. 6
   double delta_scale = 1.0;  //!< δ = this × |offset(incident) − offset(complement)| (R = 1 moves by one gap)
   double taper = 1.0;        //!< beyond slices 1 and 6, R falls linearly to 0 over this × gap (0: the paper's cut)
@@ -59,13 +59,13 @@ struct VerticalMotion {
   VerticalDirection direction = VerticalDirection::None;  //!< None when no split/merge, or undecidable
   ContourEvent event = ContourEvent::None;                //!< what the incident slice's contours do
   int frame = 0, next_frame = 0;                          //!< frame indices (t, t+1)
-  int incident_slice = -1;    //!< slice id whose contour count changes
-  int complement_slice = -1;  //!< below(incident) when Up, above(incident) when Down; -1 when None
-  int contours_before = 0;    //!< contours of the incident slice in `frame`
-  int contours_after = 0;     //!< contours of the incident slice in `next_frame`
-  double similarity_below = 0.0;  //!< eq. 6: incident slice at t against the slice below it at t+1
-  double similarity_above = 0.0;  //!< eq. 6: incident slice at t against the slice above it at t+1
-  bool decided_by_counts = false; //!< true when the count rule, not the similarity, gave the direction
+  int incident_slice = -1;                                //!< slice id whose contour count changes
+  int complement_slice = -1;       //!< below(incident) when Up, above(incident) when Down; -1 when None
+  int contours_before = 0;         //!< contours of the incident slice in `frame`
+  int contours_after = 0;          //!< contours of the incident slice in `next_frame`
+  double similarity_below = 0.0;   //!< eq. 6: incident slice at t against the slice below it at t+1
+  double similarity_above = 0.0;   //!< eq. 6: incident slice at t against the slice above it at t+1
+  bool decided_by_counts = false;  //!< true when the count rule, not the similarity, gave the direction
 };
 
 //! Direction of the vertical motion on slice `slice_id` between `frame` and `next_frame`, by
@@ -84,10 +84,10 @@ std::vector<VerticalMotion> vertical_motions(const Sequence& seq, int frame, int
 
 //! The two end points of the ridge on contour A (Fig. 8A).
 struct RidgeEnds {
-  bool found = false;               //!< false when fewer than two middle bands exist
-  std::array<Vec3, 2> points{};     //!< end points (points of A, world mm)
-  std::array<int, 2> index{-1, -1}; //!< their indices in A
-  std::vector<int> band_sizes;      //!< sizes of all middle bands, largest first
+  bool found = false;                //!< false when fewer than two middle bands exist
+  std::array<Vec3, 2> points{};      //!< end points (points of A, world mm)
+  std::array<int, 2> index{-1, -1};  //!< their indices in A
+  std::vector<int> band_sizes;       //!< sizes of all middle bands, largest first
 };
 
 //! Fig. 8A: projects A, B, C on `plane`; the middle band holds the points of A whose 2D distances to
@@ -98,11 +98,11 @@ RidgeEnds ridge_end_points(const std::vector<Vec3>& A, const std::vector<Vec3>& 
 
 //! A ridge: a path of mesh edges (Fig. 8B).
 struct Ridge {
-  bool found = false;                  //!< false when no end points or no path
-  RidgeEnds ends;                      //!< the end points on A
-  std::vector<std::uint32_t> vertices; //!< mesh vertex ids, start to end
-  std::vector<Vec3> points;            //!< their positions (mm)
-  bool used_shortest_path = false;     //!< Greedy got stuck and Dijkstra finished the path
+  bool found = false;                   //!< false when no end points or no path
+  RidgeEnds ends;                       //!< the end points on A
+  std::vector<std::uint32_t> vertices;  //!< mesh vertex ids, start to end
+  std::vector<Vec3> points;             //!< their positions (mm)
+  bool used_shortest_path = false;      //!< Greedy got stuck and Dijkstra finished the path
 };
 
 //! Path on `mesh` from vertex `from` to vertex `to`: Greedy (paper) or Shortest, over the vertices

@@ -20,23 +20,25 @@ namespace c4d {
 //! How to slice and mesh a phantom.
 struct PhantomOptions {
   double spacing = 5.0;  //!< distance between slice planes (mm), > 0
-  double offset = std::numeric_limits<double>::quiet_NaN();  //!< one slice plane lies at this height on the slice axis (mm, phantom frame); NaN: the phantom's default
-  int frames = 0;            //!< frames of a cyclic phantom; 0: the phantom's default (ignored by single-frame phantoms)
-  bool oblique = false;      //!< move contours and truth by oblique_rotation() and oblique_translation()
-  double truth_edge = 0.5;   //!< target edge length of the truth mesh (mm), in [0.05, 10]
+  double offset = std::numeric_limits<double>::
+      quiet_NaN();  //!< one slice plane lies at this height on the slice axis (mm, phantom frame); NaN: the phantom's default
+  int frames = 0;           //!< frames of a cyclic phantom; 0: the phantom's default (ignored by single-frame phantoms)
+  bool oblique = false;     //!< move contours and truth by oblique_rotation() and oblique_translation()
+  double truth_edge = 0.5;  //!< target edge length of the truth mesh (mm), in [0.05, 10]
 };
 
 //! A phantom: validated contours, the true surface per frame and its volume.
 struct Phantom {
-  std::string name;                    //!< e.g. "left-heart"
-  std::string description;             //!< one line
-  Sequence contours;                   //!< sections by the slice planes, label "lv" (left-heart*) or the phantom name
-  std::vector<TriangleMesh> truth;     //!< one closed, outward-oriented 2-manifold mesh per frame (mm)
-  std::vector<double> true_volume_mm3; //!< enclosed volume per frame: analytic where known, else of the truth mesh
-  double slab_min = 0.0;               //!< offset (mm, along contours.normal) of the first slice plane that cuts any frame
-  double slab_max = 0.0;               //!< offset of the last such plane
-  std::vector<std::vector<double>> shape_parameters;  //!< per frame, the analytic parameters (docs/phantoms.md lists them)
-  bool oblique = false;                //!< whether the oblique motion was applied to contours and truth
+  std::string name;                     //!< e.g. "left-heart"
+  std::string description;              //!< one line
+  Sequence contours;                    //!< sections by the slice planes, label "lv" (left-heart*) or the phantom name
+  std::vector<TriangleMesh> truth;      //!< one closed, outward-oriented 2-manifold mesh per frame (mm)
+  std::vector<double> true_volume_mm3;  //!< enclosed volume per frame: analytic where known, else of the truth mesh
+  double slab_min = 0.0;  //!< offset (mm, along contours.normal) of the first slice plane that cuts any frame
+  double slab_max = 0.0;  //!< offset of the last such plane
+  std::vector<std::vector<double>>
+      shape_parameters;  //!< per frame, the analytic parameters (docs/phantoms.md lists them)
+  bool oblique = false;  //!< whether the oblique motion was applied to contours and truth
 };
 
 //! Names accepted by make_phantom, in a fixed order.

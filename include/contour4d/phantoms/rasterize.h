@@ -11,11 +11,12 @@ namespace c4d {
 
 //! How a phantom is sampled on a voxel grid.
 struct RasterizeOptions {
-  double pixel_x = 1.0;             //!< in-plane voxel size along voxel axis i (mm), > 0
-  double pixel_y = 1.0;             //!< in-plane voxel size along voxel axis j (mm), > 0
-  double margin = 3.0;              //!< empty border around the union of the frames' truth meshes (mm), >= 0
-  Vec2 shift_px{0.37, -0.21};       //!< in-plane shift of the grid (fractions of a voxel) so the shape is not symmetric about it
-  int label = 1;                    //!< value of the voxels inside, 1..32767
+  double pixel_x = 1.0;  //!< in-plane voxel size along voxel axis i (mm), > 0
+  double pixel_y = 1.0;  //!< in-plane voxel size along voxel axis j (mm), > 0
+  double margin = 3.0;   //!< empty border around the union of the frames' truth meshes (mm), >= 0
+  Vec2 shift_px{0.37,
+                -0.21};  //!< in-plane shift of the grid (fractions of a voxel) so the shape is not symmetric about it
+  int label = 1;         //!< value of the voxels inside, 1..32767
 };
 
 //! Samples every frame of `phantom` at the voxel centres: a voxel takes `label` when its centre lies

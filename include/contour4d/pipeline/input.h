@@ -28,7 +28,6 @@ struct InputOptions {
                                            //!< them (contour_repair.h; contour JSON and GPFile folders)
 };
 
-
 //! Reads a .json contour file, a GPFile folder (a folder with GPFile_*.txt, or its parent), a
 //! Sunnybrook-style patient folder (i-contours/, o-contours/, DICOM images), or label images
 //! (NIfTI, NRRD, MetaImage: one 4D file, one file per frame, a folder or a name pattern).

@@ -20,17 +20,18 @@ struct PackRunOptions {
   std::string interp = "catmull-rom";  //!< [--interp] "catmull-rom" (periodic), "linear" or "step"
   bool gltf = true;                    //!< [--no-gltf] also make the .glb
   bool gltf_step = false;              //!< [--gltf-step] STEP animation in the .glb instead of LINEAR
+  bool gltf_quantized = false;         //!< [--gltf-quantized] KHR_mesh_quantization .glb (smaller; fewer readers)
 };
 
 //! What packing gives: the file contents and the figures the command line prints.
 struct PackRun {
-  MeshSequence input;            //!< the sequence packed (after resampling)
+  MeshSequence input;  //!< the sequence packed (after resampling)
   CompactModel model;
   CompactStats stats;
-  std::string c4d;               //!< model.c4d's bytes (zstd-compressed)
-  std::size_t raw_payload = 0;   //!< the payload before compression (bytes)
+  std::string c4d;                 //!< model.c4d's bytes (zstd-compressed)
+  std::size_t raw_payload = 0;     //!< the payload before compression (bytes)
   std::size_t stored_payload = 0;  //!< the payload as stored (bytes)
-  std::string glb;               //!< model.glb's bytes; empty unless PackRunOptions::gltf
+  std::string glb;                 //!< model.glb's bytes; empty unless PackRunOptions::gltf
 };
 
 //! `seq` resampled to `frames` frames with `interp` ("catmull-rom", "linear" or "step"); 0: unchanged.

@@ -20,23 +20,23 @@ namespace c4d {
 
 //! What a user sets for one reconstruction (the command line's names in brackets; defaults as there).
 struct ReconstructRunOptions {
-  int frame = -1;                      //!< [--frame] reconstruct this frame only; -1: every frame
-  std::string label;                   //!< [--label] the structure (contour inputs; label images select on reading)
+  int frame = -1;                       //!< [--frame] reconstruct this frame only; -1: every frame
+  std::string label;                    //!< [--label] the structure (contour inputs; label images select on reading)
   double edge = SurfaceOptions{}.edge;  //!< [--edge] target edge length (mm)
-  std::string cap = "rounded";         //!< [--cap] end caps: "rounded", "flat" or "open"
-  std::string method = "rbf-project";  //!< [--method] all frames: "rbf-project", "carry" or "rbf" (the paper's)
-  int threads = 0;                     //!< [--threads] worker threads, 0: all cores; the output does not depend on it
-  bool vertical = false;               //!< [--vertical-deformation] Lim et al.'s vertical deformation
-  std::string tiling = "bands";        //!< [--tiling] "bands" or "delaunay" (Lim et al.'s)
+  std::string cap = "rounded";          //!< [--cap] end caps: "rounded", "flat" or "open"
+  std::string method = "rbf-project";   //!< [--method] all frames: "rbf-project", "carry" or "rbf" (the paper's)
+  int threads = 0;                      //!< [--threads] worker threads, 0: all cores; the output does not depend on it
+  bool vertical = false;                //!< [--vertical-deformation] Lim et al.'s vertical deformation
+  std::string tiling = "bands";         //!< [--tiling] "bands" or "delaunay" (Lim et al.'s)
   double volume_tolerance = ResultCheckOptions{}.volume_tolerance;  //!< [--volume-tolerance] output check
 };
 
 //! What a run gives: the meshes, the checks of every frame and the report (report.json's text).
 struct ReconstructRun {
-  MeshSequence result;     //!< every frame (one for ReconstructRunOptions::frame), the same triangles
-  ResultCheck check;       //!< the checks of every frame; the caller writes nothing when !check.ok()
-  std::string report;      //!< report.json (2-space indented JSON, ending in a newline)
-  std::string input;       //!< the input's name, for messages
+  MeshSequence result;  //!< every frame (one for ReconstructRunOptions::frame), the same triangles
+  ResultCheck check;    //!< the checks of every frame; the caller writes nothing when !check.ok()
+  std::string report;   //!< report.json (2-space indented JSON, ending in a newline)
+  std::string input;    //!< the input's name, for messages
 };
 
 //! Called with the stage, the work done and the total (frames), for progress bars.

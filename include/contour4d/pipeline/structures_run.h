@@ -14,9 +14,9 @@ namespace c4d {
 //! One structure's run: its result, or the error that stopped it.
 struct StructureRun {
   Structure structure;
-  ReconstructRun run;      //!< empty when `error_code` is set
-  int error_code = 0;      //!< the exit code of the failure (26: failed its checks), 0 when valid
-  std::string error;       //!< the failure's message
+  ReconstructRun run;  //!< empty when `error_code` is set
+  int error_code = 0;  //!< the exit code of the failure (26: failed its checks), 0 when valid
+  std::string error;   //!< the failure's message
 };
 
 //! Reconstructs every structure with the same options (each frame's label is the structure's). A failing

@@ -31,17 +31,17 @@ struct OrbitCamera {
 
 //! What one draw call shows.
 struct PatchDrawState {
-  double t_ms = 0.0;          //!< time (ms); frames are blended per `interpolation`
-  int level = 8;              //!< tessellation level, inner and outer (1..64): about 1.5·level² triangles per patch
-  bool displaced = true;      //!< add the displacement maps (false: the smooth PN patches only)
-  bool wireframe = false;     //!< draw the tessellated edges over the surface
-  bool section = false;       //!< clip at the section plane and draw the contours of that slice
-  int section_slice = -1;     //!< index into the sorted slice list (-1: the middle slice)
+  double t_ms = 0.0;       //!< time (ms); frames are blended per `interpolation`
+  int level = 8;           //!< tessellation level, inner and outer (1..64): about 1.5·level² triangles per patch
+  bool displaced = true;   //!< add the displacement maps (false: the smooth PN patches only)
+  bool wireframe = false;  //!< draw the tessellated edges over the surface
+  bool section = false;    //!< clip at the section plane and draw the contours of that slice
+  int section_slice = -1;  //!< index into the sorted slice list (-1: the middle slice)
   TimeInterpolation interpolation = TimeInterpolation::Linear;  //!< between frames
-  OrbitCamera camera;         //!< view
-  int width = 640;            //!< viewport (pixels)
-  int height = 480;           //!< viewport (pixels)
-  float color[3] = {0.85f, 0.25f, 0.2f};  //!< surface colour (RGB, 0..1)
+  OrbitCamera camera;                                           //!< view
+  int width = 640;                                              //!< viewport (pixels)
+  int height = 480;                                             //!< viewport (pixels)
+  float color[3] = {0.85f, 0.25f, 0.2f};                        //!< surface colour (RGB, 0..1)
 };
 
 //! GL objects and programs of the pipeline. Construct, use and destroy with the same OpenGL 4.3+

@@ -31,10 +31,10 @@ struct Image {
 
 //! Camera and image options.
 struct RenderOptions {
-  int width = 640;                 //!< image width (pixels)
-  int height = 480;                //!< image height (pixels)
-  Vec3 view_direction{-0.4, 1.0, -0.3};  //!< direction the camera looks along (LPS: from anterior, oblique)
-  bool perspective = false;        //!< perspective instead of orthographic
+  int width = 640;                        //!< image width (pixels)
+  int height = 480;                       //!< image height (pixels)
+  Vec3 view_direction{-0.4, 1.0, -0.3};   //!< direction the camera looks along (LPS: from anterior, oblique)
+  bool perspective = false;               //!< perspective instead of orthographic
   float color[3] = {0.85f, 0.25f, 0.2f};  //!< surface colour (RGB, 0..1)
   TimeInterpolation interpolation = TimeInterpolation::Linear;  //!< compact path between frames
 };

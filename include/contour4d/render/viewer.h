@@ -17,12 +17,12 @@ namespace c4d {
 
 //! Options of run_viewer.
 struct ViewerOptions {
-  int width = 1280;             //!< window size (pixels)
-  int height = 800;             //!< window size (pixels)
-  double speed = 1.0;           //!< playback speed (1: real time of the frames' time_ms)
-  PatchDrawState initial;       //!< first state shown (level, interpolation, section...)
+  int width = 1280;                      //!< window size (pixels)
+  int height = 800;                      //!< window size (pixels)
+  double speed = 1.0;                    //!< playback speed (1: real time of the frames' time_ms)
+  PatchDrawState initial;                //!< first state shown (level, interpolation, section...)
   std::string title = "contour4d view";  //!< window title prefix
-  int max_seconds = 0;          //!< close after this many seconds (0: never; for smoke tests)
+  int max_seconds = 0;                   //!< close after this many seconds (0: never; for smoke tests)
 };
 
 //! True when this build has the window (GLFW found at configure time).

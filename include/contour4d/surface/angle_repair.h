@@ -41,8 +41,8 @@ std::size_t repair_small_angles(std::vector<Vec3>& positions, const std::vector<
 //! snapped by `snap`), up to `rounds` rounds of 10 steps while intersections remain. The (costly)
 //! intersection test runs only when some triangle has an angle below 15°; returns the intersecting
 //! pairs left then (0: none, or not tested). Deterministic.
-std::size_t untangle(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const std::vector<char>& fixed,
-                     const SurfaceSnap& snap, int rounds = 4);
+std::size_t untangle(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                     const std::vector<char>& fixed, const SurfaceSnap& snap, int rounds = 4);
 
 //! The smallest angle (degrees) of triangle (a, b, c); 0 when degenerate.
 double min_angle_deg(Vec3 a, Vec3 b, Vec3 c);

@@ -20,8 +20,8 @@ enum class CapStyle {
 
 //! Options of a cap.
 struct CapOptions {
-  double edge = 1.0;     //!< target edge length of the cap's interior triangles (mm)
-  double height = 2.5;   //!< dome height (mm), Rounded only; clipped to the region's half width
+  double edge = 1.0;        //!< target edge length of the cap's interior triangles (mm)
+  double height = 2.5;      //!< dome height (mm), Rounded only; clipped to the region's half width
   double near_edges = 2.0;  //!< interior triangles within this many edges of the loops are at most `edge` long
   double ramp_edges = 5.0;  //!< beyond this many edges from the loops the bound is far_scale × edge (linear in between)
   double far_scale = 3.0;   //!< size bound far from the loops, in edges (≤ 1 or not finite: uniform `edge`). A
@@ -36,9 +36,9 @@ struct CapOptions {
 
 //! A planar cap in plane coordinates plus a height per point.
 struct CapMesh {
-  std::vector<Vec2> points;                       //!< the loops' points first (in input order), then interior points
-  std::vector<double> height;                     //!< lift of each point along the cap direction (mm); 0 on the loops
-  std::vector<Triangle> triangles;                //!< counter-clockwise in the plane
+  std::vector<Vec2> points;         //!< the loops' points first (in input order), then interior points
+  std::vector<double> height;       //!< lift of each point along the cap direction (mm); 0 on the loops
+  std::vector<Triangle> triangles;  //!< counter-clockwise in the plane
 };
 
 //! Triangulates the region bounded by `loops` (an outer loop and its holes; even–odd nesting) with
@@ -73,16 +73,17 @@ double extrapolated_cap_volume(double area, double neighbour_area, double spacin
 //! u ∈ [0, height] becomes height·(1 − (1 − u/height)^e), e ≥ 1 found by bisection (e = 1: no
 //! change; larger e: flatter top, steeper rim). Vertices at height 0 (the rim) stay. Returns the
 //! exponent used (1 when the cap already holds `target`; capped at 64).
-double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame, double target);
+double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame,
+                double target);
 
 //! The wall between an end contour (the one under a cap) and the contours it connects to on the
 //! neighbouring slice, in a frame whose slice planes are z = const.
 struct EndBand {
-  std::vector<Triangle> triangles;      //!< the wall's triangles (outward)
-  std::vector<std::uint32_t> movable;   //!< its free vertices (not on a contour)
-  double z_end = 0.0, z_ref = 0.0;      //!< planes of the end contour and of the neighbouring slice
-  Vec2 c_end{}, c_ref{};                //!< area centroids of the two sides' contours
-  double area_end = 0.0;                //!< area enclosed by the end contour(s) (mm²)
+  std::vector<Triangle> triangles;     //!< the wall's triangles (outward)
+  std::vector<std::uint32_t> movable;  //!< its free vertices (not on a contour)
+  double z_end = 0.0, z_ref = 0.0;     //!< planes of the end contour and of the neighbouring slice
+  Vec2 c_end{}, c_ref{};               //!< area centroids of the two sides' contours
+  double area_end = 0.0;               //!< area enclosed by the end contour(s) (mm²)
 };
 
 //! Volume (mm³) enclosed by the wall and the two slice planes. `orientation` is +1 when the mesh's

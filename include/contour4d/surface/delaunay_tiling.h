@@ -19,20 +19,25 @@ namespace c4d {
 
 //! Settings of tile_slices_delaunay.
 struct DelaunayTilingOptions {
-  int max_cat_rounds = 4;          //!< rounds of CAT point insertion while flat triangles remain
-  bool split_flat_edges = true;    //!< also split inner edges with both ends on one slice (they would touch a cap)
-  double crossing_height = 0.5;    //!< height, as a fraction of gap, of the points where the projections meet
-  double height_margin = 0.05;     //!< CAT heights d_lower / (d_lower + d_upper) are mapped into [margin, 1 - margin] · gap
+  int max_cat_rounds = 4;        //!< rounds of CAT point insertion while flat triangles remain
+  bool split_flat_edges = true;  //!< also split inner edges with both ends on one slice (they would touch a cap)
+  double crossing_height = 0.5;  //!< height, as a fraction of gap, of the points where the projections meet
+  double height_margin =
+      0.05;  //!< CAT heights d_lower / (d_lower + d_upper) are mapped into [margin, 1 - margin] · gap
 };
 
 //! The band between two slices: new points and triangles over the ids of the input polygons.
 struct DelaunayTiling {
-  std::vector<Vec3> points;          //!< new (CAT) points as (u, v, height above the lower slice); ids start after all polygon vertices
-  std::vector<Triangle> triangles;   //!< vertex ids: lower polygons' vertices in order (polygon 0 first), then upper polygons', then `points`
-  std::vector<std::string> warnings; //!< anything not handled perfectly
-  std::size_t crossing_points = 0;   //!< points of `points` where lower and upper contours meet in projection (they come first)
-  int cat_rounds = 0;                //!< rounds of CAT insertion that added points
-  std::size_t flat_triangles = 0;    //!< triangles with all three vertices at one height left after the last round (0 when all went well)
+  std::vector<Vec3>
+      points;  //!< new (CAT) points as (u, v, height above the lower slice); ids start after all polygon vertices
+  std::vector<Triangle>
+      triangles;  //!< vertex ids: lower polygons' vertices in order (polygon 0 first), then upper polygons', then `points`
+  std::vector<std::string> warnings;  //!< anything not handled perfectly
+  std::size_t crossing_points =
+      0;               //!< points of `points` where lower and upper contours meet in projection (they come first)
+  int cat_rounds = 0;  //!< rounds of CAT insertion that added points
+  std::size_t flat_triangles =
+      0;  //!< triangles with all three vertices at one height left after the last round (0 when all went well)
 };
 
 //! \brief Tiles the band between the polygons of two adjacent slices (Lim et al. 2014).

@@ -12,7 +12,8 @@ namespace c4d {
 
 //! Options of fairing.
 struct FairingOptions {
-  double shape_weight = 1.0;  //!< weight of the shape-keeping terms (vertices with keep_shape set) against the smoothness terms
+  double shape_weight =
+      1.0;  //!< weight of the shape-keeping terms (vertices with keep_shape set) against the smoothness terms
   std::vector<double> row_scale;  //!< per vertex, a factor on its term's row (its weight: the factor squared); empty:
                                   //!< 1 everywhere. The umbrella Laplacian grows with the edge length squared, so
                                   //!< a region meshed s times coarser weighs s² as much per area: 1/s there keeps

@@ -14,15 +14,15 @@ namespace c4d {
 
 //! What check_mesh found.
 struct MeshCheck {
-  std::size_t boundary_edges = 0;     //!< edges used by one triangle
-  std::size_t nonmanifold_edges = 0;  //!< edges used by more than two triangles
-  std::size_t misoriented_edges = 0;  //!< edges whose two triangles run them the same way
+  std::size_t boundary_edges = 0;        //!< edges used by one triangle
+  std::size_t nonmanifold_edges = 0;     //!< edges used by more than two triangles
+  std::size_t misoriented_edges = 0;     //!< edges whose two triangles run them the same way
   std::size_t nonmanifold_vertices = 0;  //!< vertices whose triangles form more than one fan
   std::size_t degenerate_triangles = 0;  //!< repeated vertex or zero area
-  std::size_t components = 0;         //!< edge-connected components
-  long euler = 0;                     //!< V - E + F over used vertices
-  double signed_volume = 0.0;         //!< mm³; positive when outward
-  bool self_intersects = false;       //!< only meaningful when checked
+  std::size_t components = 0;            //!< edge-connected components
+  long euler = 0;                        //!< V - E + F over used vertices
+  double signed_volume = 0.0;            //!< mm³; positive when outward
+  bool self_intersects = false;          //!< only meaningful when checked
   bool closed_manifold() const {
     return boundary_edges == 0 && nonmanifold_edges == 0 && misoriented_edges == 0 && nonmanifold_vertices == 0;
   }

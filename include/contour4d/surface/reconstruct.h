@@ -37,29 +37,30 @@ struct SurfaceOptions {
                                       //!< isotropically (even triangles: the 4D run's frame 0, the Delaunay tiling)
   RemeshEngine remesher = RemeshEngine::Cgal;  //!< the isotropic remeshing of the bands when rows = false: CGAL's
                                                //!< or ours (Fast, isotropic_remesh.h; the 4D run's frame 0)
-  double angle_target_deg = 28.0;     //!< last, the small-angle repair moves vertices of triangles with an angle
-                                      //!< below this within the surface (angle_repair.h); the 4D run's frame 0 uses
-                                      //!< the all-frames stage's target (32°)
-  bool geometry_only = false;         //!< the surface only serves as a target to project onto (the 4D run's later
-                                      //!< frames): rows, no final remeshing, no small-angle repair, no
-                                      //!< self-intersection test
+  double angle_target_deg = 28.0;        //!< last, the small-angle repair moves vertices of triangles with an angle
+                                         //!< below this within the surface (angle_repair.h); the 4D run's frame 0 uses
+                                         //!< the all-frames stage's target (32°)
+  bool geometry_only = false;            //!< the surface only serves as a target to project onto (the 4D run's later
+                                         //!< frames): rows, no final remeshing, no small-angle repair, no
+                                         //!< self-intersection test
   bool check_self_intersections = true;  //!< run CGAL's self-intersection test for the report
 };
 
 //! What reconstruct_frame did, for logs and the CLI summary.
 struct SurfaceReport {
   std::vector<Connection> connections;  //!< above/below links used (slice ids, input contour indices)
-  int contours = 0;            //!< contours of the frame used
-  int caps = 0;                //!< caps made (CapStyle::Open: ends left open)
-  int branchings = 0;          //!< slice pairs joined through bridges (1→n, n→1, n→m)
-  std::size_t vertices = 0;    //!< output vertex count
-  std::size_t triangles = 0;   //!< output triangle count
-  bool closed = false;         //!< closed 2-manifold, consistently oriented
-  bool self_intersects = false;  //!< CGAL found intersecting triangles (when checked)
-  bool self_intersections_checked = false;  //!< the self-intersection test ran (SurfaceOptions::check_self_intersections)
-  long euler = 0;              //!< Euler characteristic V - E + F
-  int components = 0;          //!< connected components
-  double volume = 0.0;         //!< signed volume (mm³), > 0 when outward
+  int contours = 0;                     //!< contours of the frame used
+  int caps = 0;                         //!< caps made (CapStyle::Open: ends left open)
+  int branchings = 0;                   //!< slice pairs joined through bridges (1→n, n→1, n→m)
+  std::size_t vertices = 0;             //!< output vertex count
+  std::size_t triangles = 0;            //!< output triangle count
+  bool closed = false;                  //!< closed 2-manifold, consistently oriented
+  bool self_intersects = false;         //!< CGAL found intersecting triangles (when checked)
+  bool self_intersections_checked =
+      false;                          //!< the self-intersection test ran (SurfaceOptions::check_self_intersections)
+  long euler = 0;                     //!< Euler characteristic V - E + F
+  int components = 0;                 //!< connected components
+  double volume = 0.0;                //!< signed volume (mm³), > 0 when outward
   std::vector<std::string> warnings;  //!< problems that did not stop the reconstruction
 };
 

@@ -20,8 +20,8 @@ enum class RemeshEngine {
 
 //! Options of remeshing.
 struct RemeshOptions {
-  double edge = 1.0;     //!< target edge length (mm)
-  int iterations = 5;    //!< split/collapse/flip/relax rounds
+  double edge = 1.0;              //!< target edge length (mm)
+  int iterations = 5;             //!< split/collapse/flip/relax rounds
   bool split_constraints = true;  //!< allow splitting contour edges longer than 4/3 edge (new vertices stay on them)
   RemeshEngine engine = RemeshEngine::Cgal;  //!< Fast (isotropic_remesh.h) is used unless split_constraints (CGAL only)
 };

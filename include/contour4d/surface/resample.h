@@ -14,7 +14,7 @@ namespace c4d {
 struct ResampleOptions {
   double edge = 1.0;               //!< target spacing along the contour (mm)
   double corner_angle_deg = 30.0;  //!< input vertices turning more than this are kept exactly
-  double tolerance = 0.0;          //!< largest chord deviation from the input on curved arcs (mm); 0: spacing `edge` only
+  double tolerance = 0.0;  //!< largest chord deviation from the input on curved arcs (mm); 0: spacing `edge` only
 };
 
 //! Index of a canonical start vertex of a closed polygon that depends on its shape only, not on

@@ -11,10 +11,10 @@ namespace c4d {
 
 //! Options of λ|μ|ε smoothing.
 struct SmoothingOptions {
-  int iterations = 10;     //!< λ and μ pass pairs
-  double lambda = 0.5;     //!< shrinking step, 0 < λ < 1
-  double pass_band = 0.05; //!< k_PB = 1/λ + 1/μ (paper: 0.01–0.1); μ is derived from it
-  double epsilon = 0.2;    //!< largest move along the normal per pass (mm); <= 0 disables the bound
+  int iterations = 10;      //!< λ and μ pass pairs
+  double lambda = 0.5;      //!< shrinking step, 0 < λ < 1
+  double pass_band = 0.05;  //!< k_PB = 1/λ + 1/μ (paper: 0.01–0.1); μ is derived from it
+  double epsilon = 0.2;     //!< largest move along the normal per pass (mm); <= 0 disables the bound
 };
 
 //! Smooths `mesh` in place with umbrella weights; vertices with fixed[v] != 0 do not move (the

@@ -32,10 +32,10 @@ enum class CompactError {
 
 //! Options of compact_encode.
 struct CompactOptions {
-  double tolerance = 0.05;          //!< max distance (mm) between decoded and input vertex, any frame
-  std::size_t control_vertices = 600;  //!< target number of control vertices carrying the motion
-  int neighbours = 8;               //!< control vertices per fine vertex in the interpolation
-  bool reorder = true;              //!< reorder vertices and triangles for compression (permutes ids)
+  double tolerance = 0.05;                    //!< max distance (mm) between decoded and input vertex, any frame
+  std::size_t control_vertices = 600;         //!< target number of control vertices carrying the motion
+  int neighbours = 8;                         //!< control vertices per fine vertex in the interpolation
+  bool reorder = true;                        //!< reorder vertices and triangles for compression (permutes ids)
   CompactError error = CompactError::Vertex;  //!< what `tolerance` bounds
 };
 
@@ -48,19 +48,19 @@ struct CompactModel {
   std::uint32_t vertex_count = 0;
   std::uint32_t triangle_count = 0;
   std::uint32_t frame_count = 0;
-  std::vector<double> times_ms;             //!< time of each frame (ms)
-  double origin[3] = {0, 0, 0};             //!< grid origin (mm)
-  double grid_step = 0.0;                   //!< frame-0 position quantum (mm)
-  double motion_step = 0.0;                 //!< control displacement quantum (mm)
-  double residual_step = 0.0;               //!< correction quantum (mm)
-  double tolerance = 0.0;                   //!< the bound the encoder guaranteed (mm)
-  std::uint32_t neighbours = 0;             //!< control vertices per fine vertex
-  CompactError error = CompactError::Vertex;  //!< Surface: corrections may be scalars along the normal
-  std::vector<std::uint8_t> indices;        //!< meshopt_encodeIndexBuffer of the triangles
-  std::vector<std::uint8_t> positions;      //!< meshopt_encodeVertexBuffer of uint16 x,y,z,0 (grid units)
-  std::vector<std::uint32_t> control;       //!< ids of the control vertices, increasing
-  std::vector<std::uint8_t> motion;         //!< meshopt_encodeVertexBuffer of int16 x,y,z,0 per
-                                            //!< (control vertex, frame), control-major
+  std::vector<double> times_ms;                        //!< time of each frame (ms)
+  double origin[3] = {0, 0, 0};                        //!< grid origin (mm)
+  double grid_step = 0.0;                              //!< frame-0 position quantum (mm)
+  double motion_step = 0.0;                            //!< control displacement quantum (mm)
+  double residual_step = 0.0;                          //!< correction quantum (mm)
+  double tolerance = 0.0;                              //!< the bound the encoder guaranteed (mm)
+  std::uint32_t neighbours = 0;                        //!< control vertices per fine vertex
+  CompactError error = CompactError::Vertex;           //!< Surface: corrections may be scalars along the normal
+  std::vector<std::uint8_t> indices;                   //!< meshopt_encodeIndexBuffer of the triangles
+  std::vector<std::uint8_t> positions;                 //!< meshopt_encodeVertexBuffer of uint16 x,y,z,0 (grid units)
+  std::vector<std::uint32_t> control;                  //!< ids of the control vertices, increasing
+  std::vector<std::uint8_t> motion;                    //!< meshopt_encodeVertexBuffer of int16 x,y,z,0 per
+                                                       //!< (control vertex, frame), control-major
   std::vector<std::vector<std::uint8_t>> corrections;  //!< per frame: varint-coded sparse corrections
                                                        //!< (Surface: gap·2 + full flag, then 3 or 1 values)
 };
@@ -71,11 +71,11 @@ struct CompactStats {
   std::size_t position_bytes = 0;
   std::size_t motion_bytes = 0;
   std::size_t correction_bytes = 0;
-  std::size_t corrected_vertices = 0;  //!< corrections over all frames
-  double max_error = 0.0;              //!< max distance decoded vs input vertex (mm), all frames
-  double rms_error = 0.0;              //!< RMS of that distance (mm)
-  double max_surface_error = 0.0;      //!< max distance decoded vertex to input surface (mm)
-  double max_surface_error_back = 0.0; //!< max distance input vertex to decoded surface (mm)
+  std::size_t corrected_vertices = 0;   //!< corrections over all frames
+  double max_error = 0.0;               //!< max distance decoded vs input vertex (mm), all frames
+  double rms_error = 0.0;               //!< RMS of that distance (mm)
+  double max_surface_error = 0.0;       //!< max distance decoded vertex to input surface (mm)
+  double max_surface_error_back = 0.0;  //!< max distance input vertex to decoded surface (mm)
 };
 
 //! Encodes a mesh sequence. With options.reorder the model's vertex i is input vertex
@@ -83,8 +83,7 @@ struct CompactStats {
 //! \throw InvalidInput (BadMesh) on an empty sequence, frames of unequal size, out-of-range triangle
 //! indices, or non-finite coordinates.
 CompactModel compact_encode(const MeshSequence& seq, const CompactOptions& options = {},
-                            std::vector<std::uint32_t>* vertex_order = nullptr,
-                            CompactStats* stats = nullptr);
+                            std::vector<std::uint32_t>* vertex_order = nullptr, CompactStats* stats = nullptr);
 
 //! Decodes a model to the mesh sequence it stands for (vertex order of the model).
 //! \throw InvalidInput (BadMesh) when a stream is corrupt.

@@ -1,14 +1,16 @@
 #pragma once
-// Area-weighted unit vertex normals of a triangle mesh, shared by the compact encoder/decoder
-// (the direction of scalar corrections, computed alike on both sides) and the displacement-map
-// bake. Private to src/temporal.
+//! \file normals.h
+//! \brief Area-weighted unit vertex normals of a triangle mesh: the direction of the compact model's scalar
+//! corrections (computed alike when encoding and decoding), the displacement-map bake and glTF's NORMAL.
+
 #include <vector>
 
 #include "contour4d/core/mesh.h"
 
 namespace c4d {
 
-//! Unit normals; `fallback` for isolated or degenerate vertices.
+//! Unit normals, each the normalised sum of its triangles' area vectors; `fallback` for isolated or
+//! degenerate vertices.
 inline std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& p, const std::vector<Triangle>& triangles,
                                                Vec3 fallback) {
   std::vector<Vec3> n(p.size(), Vec3{});
