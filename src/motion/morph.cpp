@@ -42,8 +42,6 @@ constexpr int kProjectionIterations = 3;     // regularised projection rounds (t
 constexpr double kStiffness = 1.0;           // weight of the Laplacian term against the closest-point term
 constexpr double kRetryMinGoodShare = 0.85;  // a frame with fewer of its angles in 40–80° is tried again
 constexpr int kRetrySweepFactor = 8;         // the first retry's relaxation rounds × this, each retry's after it × 2
-                                             // (biv-me frame 6: 61 → 0 triangles below 25°, 78 → 85 % of angles in
-                                             // 40–80°; 6 gave 84.8 % with the plane snap)
 constexpr int kPlaneSnapRelaxRounds = 1;     // relaxation rounds after the plane snap, each followed by another snap
 constexpr int kUntangleRounds = 4;           // where triangles intersect after the relaxation, rounds of umbrella steps
                                              // within the surface around them (angle_repair.h untangle)

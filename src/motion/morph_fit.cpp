@@ -16,14 +16,12 @@ namespace {
 
 constexpr ContourFitOptions kFit{};     // the fit (contour_fit.h's defaults)
 constexpr int kFitRounds = 4;           // guarded_contour_fit: fits, each keeping more vertices in place
-constexpr double kFitMinAngleDeg = 20;  // the fit leaves no angle below this that was above it (25: biv-me frame 15
-                                        // keeps 0.23 mm; 20: 0.13 mm, 3 triangles below 25° in 25 frames)
+constexpr double kFitMinAngleDeg = 20;  // the fit leaves no angle below this that was above it
 constexpr double kFitGoalMm = 0.2;      // a frame whose fit leaves a contour sample farther than this from the mesh is
                                         // fitted again from before the fit with kFitFallbackMinAngleDeg, and the
                                         // closer result is kept
-constexpr double kFitFallbackMinAngleDeg = 15;  // see kFitGoalMm (left-heart cycle, contours touching at the
-                                                // saddle: 0.27 → 0.15 mm; a floor of 15 on every frame: biv-me
-                                                // frame 6 gets 16 triangles below 25°, against none)
+constexpr double kFitFallbackMinAngleDeg = 15;  // see kFitGoalMm (contours touching at a saddle need it; as a
+                                                // floor on every frame it would leave more small angles)
 
 // Every contour of a frame, as closed polylines (mm).
 std::vector<std::vector<Vec3>> frame_contours(const Frame& f) {

@@ -24,7 +24,7 @@ struct MorphSteps {
   bool contour_fit = true;          // last, the guarded fit of the frame's mesh onto all its contours (contour_fit.h)
   double saddle_curvature = 0.05;   // relaxation beside a slice whose contours split or merged since frame 0: umbrella
                                     // weights 1 + h / (this × median edge), h the edge's chord height over the
-                                    // surface (left heart ES: max distance to the truth 0.98 → 0.38 mm); 0: off
+                                    // surface: the vertices gather where a split saddle bends; 0: off
   int retry_attempts = 1;           // tries after the first while a frame misses the quality criteria
                                     // (morph.cpp, relax_with_retries)
   int crossing_retry_attempts = 1;  // tries after retry_attempts while the best try still has crossing triangles

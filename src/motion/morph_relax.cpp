@@ -253,7 +253,7 @@ void relax_rounds(const MorphWork& w, FrameWork& f, const MorphTry& tr, int roun
 }  // namespace
 
 // The relaxation works on the vertices in breadth-first order: frame 0's numbering scatters neighbours
-// (left heart: median index gap 4,600 of 22,000 vertices), so every sweep's gathers of the rings missed
+// (neighbours thousands of indices apart), so every sweep's gathers of the rings missed
 // the cache. Its sweeps are Jacobi sweeps (each writes its own vertex from the last sweep's positions)
 // and each ring keeps its neighbour order, so the order changes no result.
 void build_relax_layout(MorphWork& w) {

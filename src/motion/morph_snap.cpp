@@ -199,8 +199,8 @@ void snap_to_planes(const MorphWork& w, FrameWork& f, const MorphTry& tr) {
 // the corner exactly and stays there (else the edges beside it cut the corner). The nearest vertices up to
 // two edges away, nearest first; the first whose ring keeps kCornerFloorDeg moves. A retry puts no chain
 // vertex on its contour, so few lie on it (plane snaps): there any vertex near the corner may take it, the
-// nearest only (biv-me frame 6: a basal contour of 19 points turning by 108°, which the fit alone left
-// 0.08–0.36 mm off as the frames before it changed in their last bits). Returns the vertices that stay.
+// nearest only (a coarse contour turning sharply, which the fit alone can leave a few tenths of a mm off).
+// Returns the vertices that stay.
 std::vector<char> snap_contour_corners(const MorphWork& w, FrameWork& f, const MorphTry& tr) {
   std::vector<char> fixed(w.nv, 0);
   std::vector<std::vector<std::uint32_t>> on_line(f.lines.size());

@@ -135,8 +135,7 @@ struct MorphTry {
   bool saddle_weights = true;         // MorphSteps::saddle_curvature (not in a retry)
   bool chains_onto_contours = true;   // step 3b (not in a retry: no chain vertex is put on its contour)
   int plane_snap_good_loss = -1;      // plane snap: how many of the ring's angles in 40–80° it may lose (-1: any)
-  std::size_t corner_candidates = 3;  // step 3c: nearest vertices on the contour tried per corner (biv-me frame 5:
-                                      // conformity max 0.60 → 0.18 mm)
+  std::size_t corner_candidates = 3;  // step 3c: nearest vertices on the contour tried per corner
   bool corner_any_vertex = false;     // step 3c: any vertex near the corner may take it, not only those on the
                                       // contour (a retry, whose chain vertices stay off their contours)
 };

@@ -31,12 +31,11 @@ struct MorphOptions {
   double threshold = 0.3;             //!< similarity for a chain↔contour match (paper: 30 %)
   bool vertical_deformation = false;  //!< Lim et al.'s sine vertical pre-deformation (eq. 10, Table 1) at slices whose
                                       //!< contours split or merge, before the matching (vertical_deformation.h)
-  VerticalDeformationOptions vertical;           //!< its options
-  AngleRepairOptions angle_repair{.passes = 8};  //!< RbfProject, after the relaxation: vertices of triangles with an
-      //!< angle below angle_repair.target_deg move within the surface to maximise their
-      //!< ring's smallest angle (passes = 0: off; 8 passes, not the surface's 4: the left
-      //!< heart's ES saddle at edge 1 mm keeps 9 triangles below 25° with 4).
-      //!< reconstruct_4d gives frame 0's surface the same target
+  VerticalDeformationOptions vertical;  //!< its options
+  //! RbfProject, after the relaxation: vertices of triangles with an angle below angle_repair.target_deg move
+  //! within the surface to maximise their ring's smallest angle (passes = 0: off; twice the surface's passes,
+  //! as saddles need them). reconstruct_4d gives frame 0's surface the same target.
+  AngleRepairOptions angle_repair{.passes = 8};
 };
 
 //! A 2D contour topology change on one slice between two frames.
