@@ -25,6 +25,7 @@
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/contour.h"
 #include "contour4d/core/errors.h"
+#include "contour4d/core/union_find.h"
 #include "contour4d/surface/delaunay_tiling.h"
 #include "contour4d/surface/fairing.h"
 #include "contour4d/surface/mesh_check.h"
@@ -171,11 +172,6 @@ std::size_t separate_touching(std::vector<Node>& nodes, const std::vector<int>& 
       apply(b, sb);
     }
   return moved;
-}
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
 }
 
 // Merges the chains of `members` (same slice) into one through bridges lifted by up to `lift` mm
@@ -720,18 +716,18 @@ void tile_walls(FrameWork& fw) {
   fw.engine = opt.rows ? opt.rows_remesher : opt.remesher;
   for (std::size_t s = 0; s + 1 < slices.size(); ++s) {
     if (pair_links[s].empty()) continue;
-    std::vector<int> parent(nodes.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    for (auto [x, y] : pair_links[s]) parent[find_root(parent, x)] = find_root(parent, y);
-    std::set<int> roots;
-    for (auto [x, y] : pair_links[s]) roots.insert(find_root(parent, x));
+    // The linked contours of the slice pair in groups (connected through links), each tiled as one band.
+    UnionFind groups(nodes.size());
+    for (auto [x, y] : pair_links[s]) groups.unite(static_cast<std::size_t>(x), static_cast<std::size_t>(y));
+    std::set<std::size_t> roots;
+    for (auto [x, y] : pair_links[s]) roots.insert(groups.find(static_cast<std::size_t>(x)));
     const double gap = ff.slices[s + 1].offset - ff.slices[s].offset;
-    for (int r : roots) {
+    for (std::size_t r : roots) {
       std::vector<int> lower, upper;
       for (int n : slices[s].nodes)
-        if (nodes[n].linked_up && find_root(parent, n) == r) lower.push_back(n);
+        if (nodes[n].linked_up && groups.find(static_cast<std::size_t>(n)) == r) lower.push_back(n);
       for (int n : slices[s + 1].nodes)
-        if (nodes[n].linked_down && find_root(parent, n) == r) upper.push_back(n);
+        if (nodes[n].linked_down && groups.find(static_cast<std::size_t>(n)) == r) upper.push_back(n);
       if (lower.empty() || upper.empty()) continue;
       const bool both = lower.size() > 1 && upper.size() > 1;
       if (lower.size() > 1 || upper.size() > 1) ++rep.branchings;
