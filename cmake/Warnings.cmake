@@ -7,6 +7,14 @@ function(c4d_set_warnings target)
     $<$<BOOL:${C4D_STRICT}>:-Werror>)
 endfunction()
 
+# c4d_avx_source(file): a source of the library compiled with AVX enabled (x86-64, GCC or clang). Its kernels
+# are called only where the CPU runs AVX (core/cpu.h) and give the same bits as their SSE2 forms.
+function(c4d_avx_source source)
+  if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$" AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    set_source_files_properties(${source} TARGET_DIRECTORY contour4d PROPERTIES COMPILE_OPTIONS "-mavx")
+  endif()
+endfunction()
+
 if(C4D_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   add_link_options(-fsanitize=address,undefined)

@@ -160,7 +160,7 @@ tinygltf::Value::Array add_plain_geometry(tinygltf::Model& m, const MeshSequence
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   tinygltf::Value::Array target_names;
   for (std::size_t f = 0; f < nf; ++f) {
-    PlainFrame d = plain_frame(seq, f, rotate);
+    PlainFrame d = f == 0 ? base : plain_frame(seq, f, rotate);  // frame 0's displacements are zero
     for (std::size_t i = 0; i < d.position.size(); ++i) {
       d.position[i] -= base.position[i];
       d.normal[i] -= base.normal[i];

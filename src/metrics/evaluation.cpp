@@ -171,7 +171,7 @@ Evaluation evaluate(const MeshFrames& meshes, const Sequence* contours, const Me
       const auto backward = metrics_internal::measure_samples(sample_surface(truth->meshes[f], sd.sampling), tree, sd);
       fe.accuracy = metrics_internal::combine(forward, backward, sd);
       if (has_contours) fe.contours_to_truth = summarize_distances(truth_tree.distances(samples));
-      fe.normals = normal_deviation(mesh, truth->meshes[f]);
+      fe.normals = normal_deviation(mesh, truth_tree.surface());
     }
   });
 

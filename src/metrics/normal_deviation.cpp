@@ -12,7 +12,6 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/errors.h"
-#include "contour4d/metrics/surface_projector.h"
 
 namespace c4d {
 
@@ -30,7 +29,10 @@ double percentile(const std::vector<double>& sorted, double q) {
 }  // namespace
 
 NormalDeviation normal_deviation(const TriangleMesh& mesh, const TriangleMesh& reference) {
-  const SurfaceProjector projector(reference);
+  return normal_deviation(mesh, SurfaceProjector(reference));
+}
+
+NormalDeviation normal_deviation(const TriangleMesh& mesh, const SurfaceProjector& projector) {
   if (projector.empty())
     throw InvalidInput(ErrorCode::BadMesh, {}, "the reference surface has no triangle of non-zero area",
                        "check that the reference meshes were read correctly");

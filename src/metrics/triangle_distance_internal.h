@@ -21,6 +21,8 @@ class TriangleDistance {
   double distance(Vec3 p) const;
   //! distance() for every point, in order.
   std::vector<double> distances(const std::vector<Vec3>& points) const;
+  //! The closest-point queries underneath (for normals against the same surface).
+  const SurfaceProjector& surface() const { return surface_; }
 
  private:
   SurfaceProjector surface_;

@@ -18,12 +18,12 @@
 #include "contour4d/connect/similarity.h"
 #include "contour4d/core/contour.h"
 #include "contour4d/core/errors.h"
+#include "contour4d/core/normals.h"
 #include "contour4d/core/sparse_solve.h"
 #include "contour4d/motion/chains.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/motion/contour_matching.h"
 #include "contour4d/surface/angle_repair.h"
-#include "contour4d/surface/smoothing.h"
 #include "contour4d/metrics/surface_projector.h"
 
 namespace c4d {

@@ -80,10 +80,7 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   Reconstruct4DReport& rep = report ? *report : local;
   rep.surfaces.assign(n, {});
   // Frame 0 always; every frame when the morph projects onto each frame's own surface.
-  const bool project = options.morph.method == MorphMethod::RbfProject;
-  std::vector<char> ahead(n, 0);
-  ahead[0] = 1;
-  for (std::size_t f = 1; f < n; ++f) ahead[f] = project;
+  const std::size_t ahead = options.morph.method == MorphMethod::RbfProject ? n : 1;  // frames [0, ahead)
   auto build = [&](std::size_t f) {
     SurfaceOptions so = options.surface;
     if (f == 0) {  // the carried mesh: remeshed bands, evenly spread, at the angle the morph keeps later
@@ -113,8 +110,8 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
       if (f >= 0) {
         if (!taken[static_cast<std::size_t>(f)]) g = static_cast<std::size_t>(f);
       } else {
-        for (std::size_t k = 0; k < n && g == n; ++k)
-          if (ahead[k] && !taken[k]) g = k;
+        for (std::size_t k = 0; k < ahead && g == n; ++k)
+          if (!taken[k]) g = k;
       }
       if (g == n) return false;
       taken[g] = 1;

@@ -1,7 +1,8 @@
 #pragma once
 //! \file normals.h
-//! \brief Area-weighted unit vertex normals of a triangle mesh: the direction of the compact model's scalar
-//! corrections (computed alike when encoding and decoding), the displacement-map bake and glTF's NORMAL.
+//! \brief Unit vertex normals of a triangle mesh: area-weighted (the direction of the compact model's scalar
+//! corrections, computed alike when encoding and decoding; the displacement-map bake; glTF's NORMAL) and
+//! after Max 1999, "Weights for computing vertex normals from facet normals" (the all-frames carry).
 
 #include <vector>
 
@@ -22,6 +23,21 @@ inline std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& p, const
     const double l = norm(x);
     x = l > 0 ? (1.0 / l) * x : fallback;
   }
+  return n;
+}
+
+//! Unit normals with Max's weights: each triangle's normal over the product of the squared lengths of its two
+//! edges at the vertex. A vertex without non-degenerate triangles keeps a zero vector.
+inline std::vector<Vec3> vertex_normals(const TriangleMesh& mesh) {
+  std::vector<Vec3> n(mesh.positions.size());
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = mesh.positions[t[k]];
+      const Vec3 e1 = mesh.positions[t[(k + 1) % 3]] - p, e2 = mesh.positions[t[(k + 2) % 3]] - p;
+      const double w = dot(e1, e1) * dot(e2, e2);
+      if (w > 0) n[t[k]] += cross(e1, e2) / w;
+    }
+  for (Vec3& v : n) v = normalized(v);
   return n;
 }
 

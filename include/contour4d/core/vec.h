@@ -35,16 +35,6 @@ inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 //! z component of the 3D cross product (twice the signed area of the triangle 0, a, b).
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 inline double norm(Vec2 a) { return std::sqrt(dot(a, a)); }
-//! The point of the segment a–b closest to p, in the plane.
-inline Vec2 closest_on_segment(Vec2 a, Vec2 b, Vec2 p) {
-  const Vec2 ab = b - a;
-  const double l2 = dot(ab, ab);
-  double t = l2 > 0.0 ? dot(p - a, ab) / l2 : 0.0;
-  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-  return a + t * ab;
-}
-//! Distance (mm) from point p to the segment a–b in the plane.
-inline double segment_distance(Vec2 p, Vec2 a, Vec2 b) { return norm(p - closest_on_segment(a, b, p)); }
 
 inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
@@ -64,14 +54,17 @@ inline bool operator==(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z 
 inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
-//! The point of the segment a–b closest to p, in space.
-inline Vec3 closest_on_segment(Vec3 a, Vec3 b, Vec3 p) {
-  const Vec3 e = b - a;
-  const double ee = dot(e, e);
-  double t = ee > 0.0 ? dot(p - a, e) / ee : 0.0;
+//! The point of the segment a–b closest to p (Vec2 in the plane, Vec3 in space).
+template <class V>
+V closest_on_segment(V a, V b, V p) {
+  const V ab = b - a;
+  const double l2 = dot(ab, ab);
+  double t = l2 > 0.0 ? dot(p - a, ab) / l2 : 0.0;
   t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-  return a + t * e;
+  return a + t * ab;
 }
+//! Distance (mm) from point p to the segment a–b in the plane.
+inline double segment_distance(Vec2 p, Vec2 a, Vec2 b) { return norm(p - closest_on_segment(a, b, p)); }
 inline double distance(Vec3 a, Vec3 b) { return norm(a - b); }
 //! Unit vector along a; returns a unchanged when its length is zero.
 inline Vec3 normalized(Vec3 a) {

@@ -8,6 +8,7 @@
 #include <cstddef>
 
 #include "contour4d/core/mesh.h"
+#include "contour4d/metrics/surface_projector.h"
 
 namespace c4d {
 
@@ -24,5 +25,8 @@ struct NormalDeviation {
 //! Orientation counts: an inside-out facet is 180° off. \throw InvalidInput (BadMesh) when `reference` has
 //! no triangle of non-zero area.
 NormalDeviation normal_deviation(const TriangleMesh& mesh, const TriangleMesh& reference);
+
+//! The same against a reference whose closest-point queries are already set up (its tree reused).
+NormalDeviation normal_deviation(const TriangleMesh& mesh, const SurfaceProjector& reference);
 
 }  // namespace c4d
