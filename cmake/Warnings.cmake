@@ -7,10 +7,18 @@ function(c4d_set_warnings target)
     $<$<BOOL:${C4D_STRICT}>:-Werror>)
 endfunction()
 
-# c4d_avx_source(file): a source of the library compiled with AVX enabled (x86-64, GCC or clang). Its kernels
+# The AVX kernels are compiled where the build can enable AVX for one file (x86-64, GCC or clang); core/cpu.cpp
+# is told so (C4D_AVX_KERNELS), and its avx_available() then asks the CPU.
+if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$" AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+  set(C4D_AVX_KERNELS ON)
+else()
+  set(C4D_AVX_KERNELS OFF)
+endif()
+
+# c4d_avx_source(file): a source of the library compiled with AVX enabled (where C4D_AVX_KERNELS). Its kernels
 # are called only where the CPU runs AVX (core/cpu.h) and give the same bits as their SSE2 forms.
 function(c4d_avx_source source)
-  if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$" AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+  if(C4D_AVX_KERNELS)
     set_source_files_properties(${source} TARGET_DIRECTORY contour4d PROPERTIES COMPILE_OPTIONS "-mavx")
   endif()
 endfunction()

@@ -9,11 +9,8 @@
 #include <utility>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
-#include "avx_internal.h"
+#include "contour4d/core/cpu.h"
+#include "simd/ldlt_internal.h"
 
 namespace c4d {
 
@@ -122,8 +119,8 @@ Eigen::MatrixXd detail::solve_ldlt(const Eigen::SimplicialLDLT<Eigen::SparseMatr
 namespace {
 
 // y[rows[q]] −= columns[t][q] · yv[t] for every q < below, t = 0, 1, ..., run − 1 in that order (a
-// multiplication, then a subtraction): four rows per AVX instruction where the CPU has it (core/avx.cpp),
-// else two per SSE2 instruction, each lane a row's own chain of operations.
+// multiplication, then a subtraction): four rows per AVX instruction where the CPU has it, else two per SSE2
+// instruction (simd/ldlt_internal.h), each lane a row's own chain of operations.
 void rows_below(double* y, const int* rows, int below, const double* const* columns, const double* yv, int run,
                 int lanes) {
   static const bool avx = detail::avx_available();
@@ -131,25 +128,7 @@ void rows_below(double* y, const int* rows, int below, const double* const* colu
     detail::ldlt_rows_below_avx(y, rows, below, columns, yv, run);
     return;
   }
-  int q = 0;
-#if defined(__SSE2__)
-  for (; q + 8 <= below; q += 8) {  // four independent chains of two-lane operations
-    __m128d acc[4];
-    for (int r = 0; r < 4; ++r) acc[r] = _mm_set_pd(y[rows[q + 2 * r + 1]], y[rows[q + 2 * r]]);
-    for (int t = 0; t < run; ++t) {
-      const __m128d v = _mm_set1_pd(yv[t]);
-      const double* c = columns[t] + q;
-      acc[0] = _mm_sub_pd(acc[0], _mm_mul_pd(_mm_loadu_pd(c), v));
-      acc[1] = _mm_sub_pd(acc[1], _mm_mul_pd(_mm_loadu_pd(c + 2), v));
-      acc[2] = _mm_sub_pd(acc[2], _mm_mul_pd(_mm_loadu_pd(c + 4), v));
-      acc[3] = _mm_sub_pd(acc[3], _mm_mul_pd(_mm_loadu_pd(c + 6), v));
-    }
-    for (int r = 0; r < 4; ++r) {
-      y[rows[q + 2 * r]] = _mm_cvtsd_f64(acc[r]);
-      y[rows[q + 2 * r + 1]] = _mm_cvtsd_f64(_mm_unpackhi_pd(acc[r], acc[r]));
-    }
-  }
-#endif
+  int q = detail::ldlt_rows_below_sse2(y, rows, below, columns, yv, run);
   for (; q < below; ++q) {
     double a = y[rows[q]];
     for (int t = 0; t < run; ++t) a -= columns[t][q] * yv[t];

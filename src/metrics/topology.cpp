@@ -19,11 +19,8 @@
 #include <numeric>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <tuple>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
@@ -31,6 +28,7 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/union_find.h"
+#include "simd/box_overlap_internal.h"
 
 namespace c4d {
 namespace {
@@ -47,9 +45,10 @@ bool valid_triangle(const Triangle& t, std::size_t nv) {
 
 // One directed edge of a triangle, sorted by its undirected key.
 struct HalfEdge {
-  std::uint32_t lo, hi;  // undirected key
-  bool forward;          // traversed lo -> hi
-  std::size_t tri;
+  std::uint32_t lo, hi;               // undirected key
+  std::uint32_t tri;                  // the triangle
+  std::uint8_t corner_lo, corner_hi;  // the triangle's corner at lo, at hi
+  bool forward;                       // traversed lo -> hi
 };
 
 std::string plural(std::size_t n, const char* one, const char* many) {
@@ -341,8 +340,7 @@ struct PairScan {
   const std::vector<std::array<double, 6>>& box;
   const Grid& grid;
   const std::vector<char>& marked;
-  const float *lo0, *lo1, *lo2, *hi0, *hi1, *hi2;
-  const std::uint32_t *key0, *key1, *key2;
+  detail::BoxColumns columns;
 };
 
 // The pair loop's view of the boxes, the grid, the flags and the columns (cols must outlive it).
@@ -351,8 +349,10 @@ PairScan pair_scan(const std::vector<std::array<double, 6>>& box, const Grid& g,
   const std::size_t ni = g.items.size();
   const float* lo0 = cols.bounds.data();
   const std::uint32_t* key0 = cols.keys.data();
-  return {box,          g,    marked,    lo0,          lo0 + ni, lo0 + 2 * ni, lo0 + 3 * ni, lo0 + 4 * ni,
-          lo0 + 5 * ni, key0, key0 + ni, key0 + 2 * ni};
+  return {box,
+          g,
+          marked,
+          {lo0, lo0 + ni, lo0 + 2 * ni, lo0 + 3 * ni, lo0 + 4 * ni, lo0 + 5 * ni, key0, key0 + ni, key0 + 2 * ni}};
 }
 
 // Appends to `out` the pairs (a, b) with a's item first, b after a in cell c (items start[c]..e),
@@ -360,13 +360,11 @@ PairScan pair_scan(const std::vector<std::array<double, 6>>& box, const Grid& g,
 // that are met in this cell (ci, cj, ck), the cell of the larger lower corner.
 void scan_item(const PairScan& s, std::uint32_t a, std::uint32_t e, std::int64_t ci, std::int64_t cj, std::int64_t ck,
                std::vector<std::array<std::uint32_t, 2>>& out) {
-  const float *lo0 = s.lo0, *lo1 = s.lo1, *lo2 = s.lo2, *hi0 = s.hi0, *hi1 = s.hi1, *hi2 = s.hi2;
-  const std::uint32_t *key0 = s.key0, *key1 = s.key1, *key2 = s.key2;
   const std::uint32_t p = s.grid.items[a];
   const auto& x = s.box[p];
   const auto& sx = s.grid.span[p];
-  // Item b of the cell whose loose box overlaps a's and shares no key with it.
-  auto exact = [&](std::uint32_t b) {
+  // Item b of the cell whose loose box overlaps a's and shares no key with it (simd/box_overlap_internal.h).
+  detail::for_each_overlapping(s.columns, a, e, kNoKey, [&](std::uint32_t b) {
     const std::uint32_t q = s.grid.items[b];
     const auto& y = s.box[q];
     if (x[0] > y[3] || y[0] > x[3] || x[1] > y[4] || y[1] > x[4] || x[2] > y[5] || y[2] > x[5]) return;
@@ -375,46 +373,7 @@ void scan_item(const PairScan& s, std::uint32_t a, std::uint32_t e, std::int64_t
     const auto& sy = s.grid.span[q];
     if (std::max(sx[0], sy[0]) != ci || std::max(sx[1], sy[1]) != cj || std::max(sx[2], sy[2]) != ck) return;
     out.push_back({std::min(p, q), std::max(p, q)});
-  };
-  const std::uint32_t xk[3] = {key0[a], key1[a], key2[a]};
-  std::uint32_t b = a + 1;
-#if defined(__SSE2__)
-  {
-    const __m128 xl0 = _mm_set1_ps(lo0[a]), xl1 = _mm_set1_ps(lo1[a]), xl2 = _mm_set1_ps(lo2[a]);
-    const __m128 xh0 = _mm_set1_ps(hi0[a]), xh1 = _mm_set1_ps(hi1[a]), xh2 = _mm_set1_ps(hi2[a]);
-    for (; b < e; b += 4) {
-      // Not (x.lo > y.hi or y.lo > x.hi) in any coordinate: the scalar test below, lane by lane.
-      __m128 keep = _mm_and_ps(_mm_cmpngt_ps(xl0, _mm_loadu_ps(hi0 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo0 + b), xh0));
-      keep = _mm_and_ps(
-          keep, _mm_and_ps(_mm_cmpngt_ps(xl1, _mm_loadu_ps(hi1 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo1 + b), xh1)));
-      keep = _mm_and_ps(
-          keep, _mm_and_ps(_mm_cmpngt_ps(xl2, _mm_loadu_ps(hi2 + b)), _mm_cmpngt_ps(_mm_loadu_ps(lo2 + b), xh2)));
-      int lanes = _mm_movemask_ps(keep) & (e - b >= 4 ? 15 : (1 << (e - b)) - 1);  // items of the cell only
-      if (lanes == 0) continue;
-      const __m128i y0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key0 + b));
-      const __m128i y1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key1 + b));
-      const __m128i y2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(key2 + b));
-      __m128i shared = _mm_setzero_si128();
-      for (std::uint32_t k : xk)
-        if (k != kNoKey) {
-          const __m128i v = _mm_set1_epi32(static_cast<int>(k));
-          shared = _mm_or_si128(shared, _mm_or_si128(_mm_cmpeq_epi32(v, y0),
-                                                     _mm_or_si128(_mm_cmpeq_epi32(v, y1), _mm_cmpeq_epi32(v, y2))));
-        }
-      lanes &= ~_mm_movemask_ps(_mm_castsi128_ps(shared));
-      for (; lanes != 0; lanes &= lanes - 1)
-        exact(b + static_cast<std::uint32_t>(__builtin_ctz(static_cast<unsigned>(lanes))));
-    }
-  }
-#endif
-  for (; b < e; ++b) {  // without SSE2
-    if (lo0[a] > hi0[b] || lo0[b] > hi0[a] || lo1[a] > hi1[b] || lo1[b] > hi1[a] || lo2[a] > hi2[b] || lo2[b] > hi2[a])
-      continue;
-    bool shared = false;
-    for (std::uint32_t k : xk)
-      if (k != kNoKey && (k == key0[b] || k == key1[b] || k == key2[b])) shared = true;
-    if (!shared) exact(b);
-  }
+  });
 }
 
 // The cells in blocks of consecutive indices.
@@ -612,9 +571,9 @@ bool intersects_any(const std::vector<Vec3>& positions, const std::vector<Triang
 
 namespace {
 
-// Counts invalid, degenerate and duplicate triangles and unreferenced vertices into r; returns the
-// indices of the valid triangles.
-std::vector<std::size_t> check_triangles(const TriangleMesh& mesh, TopologyReport& r) {
+// Counts invalid, degenerate and (with `duplicates`) duplicate triangles and unreferenced vertices into
+// r; returns the indices of the valid triangles.
+std::vector<std::size_t> check_triangles(const TriangleMesh& mesh, bool duplicates, TopologyReport& r) {
   const std::size_t nv = mesh.positions.size();
   std::vector<std::size_t> tris;  // indices of valid triangles
   tris.reserve(mesh.triangles.size());
@@ -628,9 +587,11 @@ std::vector<std::size_t> check_triangles(const TriangleMesh& mesh, TopologyRepor
     }
     tris.push_back(i);
     for (std::uint32_t v : t) used[v] = 1;
-    std::array<std::uint32_t, 3> k = t;
-    std::sort(k.begin(), k.end());
-    sorted_keys.push_back(k);
+    if (duplicates) {
+      std::array<std::uint32_t, 3> k = t;
+      std::sort(k.begin(), k.end());
+      sorted_keys.push_back(k);
+    }
     if (CGAL::collinear(to_point(mesh.positions[t[0]]), to_point(mesh.positions[t[1]]), to_point(mesh.positions[t[2]])))
       ++r.degenerate_triangles;
   }
@@ -653,20 +614,31 @@ std::size_t count_duplicate_vertices(const TriangleMesh& mesh) {
   return duplicates;
 }
 
-// The valid triangles' directed edges sorted by undirected key: each run is one edge.
+std::uint8_t corner_of(const Triangle& t, std::uint32_t v) { return t[0] == v ? 0 : (t[1] == v ? 1 : 2); }
+
+// The valid triangles' directed edges sorted by (lo, hi, tri): each run is one edge. A counting sort by
+// the lower endpoint, then each vertex's few half-edges sorted by (hi, tri): one sort's order in linear time.
 std::vector<HalfEdge> sorted_half_edges(const TriangleMesh& mesh, const std::vector<std::size_t>& tris) {
-  std::vector<HalfEdge> he;
-  he.reserve(3 * tris.size());
+  const std::size_t nv = mesh.positions.size();
+  std::vector<std::size_t> start(nv + 1, 0);
+  for (std::size_t i : tris) {
+    const Triangle& t = mesh.triangles[i];
+    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  }
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<HalfEdge> he(3 * tris.size());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (std::size_t i : tris) {
     const Triangle& t = mesh.triangles[i];
     for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-      he.push_back({std::min(a, b), std::max(a, b), a < b, i});
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3], lo = std::min(a, b), hi = std::max(a, b);
+      he[fill[lo]++] = {lo, hi, static_cast<std::uint32_t>(i), corner_of(t, lo), corner_of(t, hi), a < b};
     }
   }
-  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return std::tie(x.lo, x.hi, x.tri, x.forward) < std::tie(y.lo, y.hi, y.tri, y.forward);
-  });
+  for (std::size_t v = 0; v < nv; ++v)
+    std::sort(he.begin() + static_cast<std::ptrdiff_t>(start[v]),
+              he.begin() + static_cast<std::ptrdiff_t>(start[v + 1]),
+              [](const HalfEdge& x, const HalfEdge& y) { return x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri; });
   return he;
 }
 
@@ -679,11 +651,13 @@ struct EdgeTable {
   std::vector<std::size_t> edge_size;   // number of triangles on each edge
 };
 
-// Groups the half-edges into edges, counts non-manifold and misoriented edges into r and joins the
-// triangles of each edge in `comp`.
-EdgeTable scan_edges(const std::vector<HalfEdge>& he, std::size_t triangle_count, UnionFind& comp, TopologyReport& r) {
+// Groups the half-edges into edges, counts non-manifold and misoriented edges into r, joins the
+// triangles of each edge in `comp` and their corners at each end in `corners` (corner 3·tri + k). With
+// `orientation_graph` false the two-triangle edges are not listed in the table's adjacency.
+EdgeTable scan_edges(const std::vector<HalfEdge>& he, std::size_t triangle_count, bool orientation_graph,
+                     UnionFind& comp, DisjointSets<std::uint32_t>& corners, TopologyReport& r) {
   EdgeTable t;
-  t.adj.resize(triangle_count);
+  if (orientation_graph) t.adj.resize(triangle_count);
   for (std::size_t s = 0; s < he.size();) {
     std::size_t e = s;
     while (e < he.size() && he[e].lo == he[s].lo && he[e].hi == he[s].hi) ++e;
@@ -695,10 +669,16 @@ EdgeTable scan_edges(const std::vector<HalfEdge>& he, std::size_t triangle_count
     if (n == 2) {
       const bool same_way = he[s].forward == he[s + 1].forward;
       if (same_way) ++r.misoriented_edges;
-      t.adj[he[s].tri].push_back({he[s + 1].tri, same_way});
-      t.adj[he[s + 1].tri].push_back({he[s].tri, same_way});
+      if (orientation_graph) {
+        t.adj[he[s].tri].push_back({he[s + 1].tri, same_way});
+        t.adj[he[s + 1].tri].push_back({he[s].tri, same_way});
+      }
     }
-    for (std::size_t k = s + 1; k < e; ++k) comp.unite(he[s].tri, he[k].tri);
+    for (std::size_t k = s + 1; k < e; ++k) {
+      comp.unite(he[s].tri, he[k].tri);
+      corners.unite(3 * std::size_t{he[s].tri} + he[s].corner_lo, 3 * std::size_t{he[k].tri} + he[k].corner_lo);
+      corners.unite(3 * std::size_t{he[s].tri} + he[s].corner_hi, 3 * std::size_t{he[k].tri} + he[k].corner_hi);
+    }
     s = e;
   }
   return t;
@@ -732,34 +712,24 @@ void check_orientation(const std::vector<std::size_t>& tris, const EdgeTable& ed
   }
 }
 
-// Vertex manifoldness: the triangles around a vertex must form one fan, i.e. be connected
-// through edges incident to that vertex. Returns the number of vertices that fail.
-std::size_t count_nonmanifold_vertices(const TriangleMesh& mesh, const std::vector<std::size_t>& tris) {
-  const std::size_t nv = mesh.positions.size();
+// Vertex manifoldness: the triangles around a vertex must form one fan, i.e. their corners at it be
+// joined through the edges incident to it (scan_edges). Returns the number of vertices that fail.
+std::size_t count_nonmanifold_vertices(const TriangleMesh& mesh, const std::vector<std::size_t>& tris,
+                                       DisjointSets<std::uint32_t>& corners) {
+  std::vector<std::size_t> first_root(mesh.positions.size(), SIZE_MAX);
+  std::vector<char> bad(mesh.positions.size(), 0);
   std::size_t nonmanifold = 0;
-  std::vector<std::size_t> start(nv + 1, 0);
   for (std::size_t i : tris)
-    for (std::uint32_t v : mesh.triangles[i]) ++start[v + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<std::size_t> fan(start.back()), fill(start.begin(), start.end() - 1);
-  for (std::size_t i : tris)
-    for (std::uint32_t v : mesh.triangles[i]) fan[fill[v]++] = i;
-  std::vector<std::pair<std::uint32_t, std::size_t>> spokes;  // (other vertex, local triangle)
-  for (std::size_t v = 0; v < nv; ++v) {
-    const std::size_t d = start[v + 1] - start[v];
-    if (d < 2) continue;
-    UnionFind local(d);
-    spokes.clear();
-    for (std::size_t k = 0; k < d; ++k)
-      for (std::uint32_t w : mesh.triangles[fan[start[v] + k]])
-        if (w != v) spokes.push_back({w, k});
-    std::sort(spokes.begin(), spokes.end());
-    for (std::size_t k = 1; k < spokes.size(); ++k)
-      if (spokes[k].first == spokes[k - 1].first) local.unite(spokes[k].second, spokes[k - 1].second);
-    std::size_t fans = 0;
-    for (std::size_t k = 0; k < d; ++k) fans += local.find(k) == k;
-    if (fans > 1) ++nonmanifold;
-  }
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.triangles[i][k];
+      const std::size_t root = corners.find(3 * i + k);
+      if (first_root[v] == SIZE_MAX) {
+        first_root[v] = root;
+      } else if (first_root[v] != root && !bad[v]) {
+        bad[v] = 1;
+        ++nonmanifold;
+      }
+    }
   return nonmanifold;
 }
 
@@ -897,23 +867,32 @@ TopologyReport check_topology(const TriangleMesh& mesh, const TopologyOptions& o
     r.genus = -1;
     return r;
   }
-  const std::vector<std::size_t> tris = check_triangles(mesh, r);  // the valid triangles
-  r.duplicate_vertices = count_duplicate_vertices(mesh);
+  // Triangles and corners are numbered in 32 bits (half the memory traffic of the sorts and the
+  // disjoint sets); such a mesh would take more than 17 GB of triangles alone.
+  if (mesh.triangles.size() > UINT32_MAX / 3)
+    throw std::length_error(fmt::format("check_topology: more than {} triangles", UINT32_MAX / 3));
+  const bool full = !options.counts_only;
+  const std::vector<std::size_t> tris = check_triangles(mesh, full, r);  // the valid triangles
+  if (full) r.duplicate_vertices = count_duplicate_vertices(mesh);
 
-  // Edges, and components through them.
+  // Edges, and components and vertex fans through them.
   const std::vector<HalfEdge> he = sorted_half_edges(mesh, tris);
   UnionFind comp(mesh.triangles.size());
-  const EdgeTable edges = scan_edges(he, mesh.triangles.size(), comp, r);
+  DisjointSets<std::uint32_t> corners(3 * mesh.triangles.size());
+  const EdgeTable edges = scan_edges(he, mesh.triangles.size(), full, comp, corners, r);
   r.edges = edges.edge_start.size();
   r.boundary_edges = edges.boundary.size();
-
-  check_orientation(tris, edges, r);
-  r.nonmanifold_vertices = count_nonmanifold_vertices(mesh, tris);
+  r.euler = static_cast<long>(r.vertices - r.unreferenced_vertices) - static_cast<long>(r.edges) +
+            static_cast<long>(tris.size());
+  if (full) check_orientation(tris, edges, r);
+  r.nonmanifold_vertices = count_nonmanifold_vertices(mesh, tris, corners);
 
   // Components with their Euler characteristic and boundary loops.
   const std::vector<std::size_t> comp_of = assign_components(tris, mesh.triangles.size(), comp, r);
-  const std::vector<char> comp_manifold = count_component_elements(mesh, tris, he, edges, comp_of, r);
-  component_genus(comp_manifold, r);
+  if (full) {
+    const std::vector<char> comp_manifold = count_component_elements(mesh, tris, he, edges, comp_of, r);
+    component_genus(comp_manifold, r);
+  }
 
   r.signed_volume = signed_volume(mesh, tris);
   std::vector<std::pair<std::size_t, std::size_t>> first_pairs;

@@ -13,7 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "morph_work_internal.h"
-#include "packed_math_internal.h"
+#include "simd/packed_math_internal.h"
 #include "simd_avx_internal.h"
 #include "sweep_lanes_internal.h"
 
@@ -110,7 +110,7 @@ void sweep_one(const SweepArrays& s, std::size_t i, Vec3* vel, Vec3* moved) {
     wsum += w;
     c += w * e;
   }
-  // Two triangles at a time: one division and one square root instruction for both (packed_math_internal.h:
+  // Two triangles at a time: one division and one square root instruction for both (simd/packed_math_internal.h:
   // the same bits as the scalar ones); the sums keep the triangles' order.
   std::size_t k = s.opp_start[i];
   const std::size_t k_end = s.opp_start[i + 1];

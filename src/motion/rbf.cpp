@@ -12,7 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/errors.h"
-#include "packed_math_internal.h"
+#include "simd/packed_math_internal.h"
 #include "rbf_lanes_internal.h"
 #include "simd_avx_internal.h"
 
@@ -80,7 +80,7 @@ RbfDeformer::RbfDeformer(const std::vector<Vec3>& src, const std::vector<Vec3>& 
 
 Vec3 RbfDeformer::apply(Vec3 p) const {
   Vec3 out = p;
-  // Two centres' square roots per instruction (packed_math_internal.h: the same bits); the sum keeps their order.
+  // Two centres' square roots per instruction (simd/packed_math_internal.h: the same bits); the sum keeps their order.
   const std::size_t n = centers_.size();
   std::size_t k = 0;
   for (; k + 1 < n; k += 2) {

@@ -1,6 +1,6 @@
 #pragma once
 // The radial basis function interpolant of eq. 9 (Lim et al. 2014, "4D Morphing of the Heart Model";
-// rbf.cpp) at several points at once, one point per SIMD lane (simd_lanes_internal.h: two with SSE2,
+// rbf.cpp) at several points at once, one point per SIMD lane (simd/lanes_internal.h: two with SSE2,
 // four with AVX): each lane sums the Hardy multiquadrics of the centres in their order, as
 // RbfDeformer::apply(Vec3) does, so its sum is that one's bit for bit. One point at a time, the sum is a
 // chain of dependent additions behind a square root per centre; several points keep several chains busy.
@@ -8,7 +8,7 @@
 #include <cstddef>
 
 #include "contour4d/core/vec.h"
-#include "simd_lanes_internal.h"
+#include "simd/lanes_internal.h"
 
 namespace c4d::detail {
 namespace {

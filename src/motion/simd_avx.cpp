@@ -1,5 +1,5 @@
 // The morph's four-lane steps (simd_avx_internal.h): the relaxation sweep (sweep_lanes_internal.h) and the
-// RBF sums of eq. 9 (rbf_lanes_internal.h), compiled with AVX enabled (motion/sources.cmake) and called
+// RBF sums of eq. 9 (rbf_lanes_internal.h), compiled with AVX enabled (motion/CMakeLists.txt) and called
 // only where the CPU has it. This file must use nothing with external linkage that its headers define
 // inline: an AVX copy of such a function could replace the plain one everywhere at link time.
 #include "simd_avx_internal.h"

@@ -1,7 +1,7 @@
 #pragma once
 // One relaxation sweep step (morph_relax.cpp, sweep_one, which keeps the mesh good through the cycle:
 // Lim et al. 2014, "4D Morphing of the Heart Model") for several vertices at once, one per SIMD
-// lane (simd_lanes_internal.h: two with SSE2, four with AVX), each lane repeating the one-vertex step's
+// lane (simd/lanes_internal.h: two with SSE2, four with AVX), each lane repeating the one-vertex step's
 // operations in order, so that its result is the one-vertex result bit for bit. The one-vertex step
 // waits on latency (its neighbours' loads, then a division and a square root per opposite edge, chained
 // into its sums); independent vertices in one instruction stream give the core several chains to
@@ -11,7 +11,7 @@
 #include <cstdint>
 
 #include "contour4d/core/vec.h"
-#include "simd_lanes_internal.h"
+#include "simd/lanes_internal.h"
 #include "sweep_arrays_internal.h"
 
 namespace c4d::detail {

@@ -28,15 +28,18 @@
 #include "contour4d/core/union_find.h"
 #include "contour4d/surface/delaunay_tiling.h"
 #include "contour4d/surface/fairing.h"
-#include "contour4d/surface/mesh_check.h"
 #include "contour4d/surface/refine.h"
 #include "contour4d/surface/resample.h"
 #include "contour4d/metrics/surface_walk.h"
+#include "contour4d/metrics/topology.h"
 #include "contour4d/surface/tiling.h"
 #include "surface_tuning_internal.h"
 
 namespace c4d {
 namespace {
+
+// The checks of the surface's own meshes on the way: counts, no self-intersection test.
+constexpr TopologyOptions kCountsOnly{.self_intersections = false, .counts_only = true};
 
 // Bridges of a 1→n branching rise this fraction of the gap from the several contours' slice; both sides
 // branching (n→m): two bridges meet in the band, each rises less.
@@ -814,7 +817,7 @@ void remesh_branch_bands(FrameWork& fw) {
         if (a != local.end() && c != local.end())
           constrained.push_back({std::min(a->second, c->second), std::max(a->second, c->second)});
       }
-    const MeshCheck pc = check_mesh(part, false);
+    const TopologyReport pc = check_topology(part, kCountsOnly);
     if (pc.nonmanifold_edges == 0 && pc.nonmanifold_vertices == 0 && pc.misoriented_edges == 0) {
       RemeshOptions mo;
       mo.edge = opt.edge;
@@ -979,7 +982,7 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
   fixed.resize(mesh.positions.size(), 0);
   keep_shape.resize(mesh.positions.size(), 0);
 
-  const MeshCheck coarse = check_mesh(mesh, false);
+  const TopologyReport coarse = check_topology(mesh, kCountsOnly);
   manifold = coarse.nonmanifold_edges == 0 && coarse.nonmanifold_vertices == 0 && coarse.misoriented_edges == 0;
   if (!manifold)
     rep.warnings.push_back("the tiled surface is not a clean 2-manifold (" + std::to_string(coarse.nonmanifold_edges) +
@@ -1095,14 +1098,15 @@ TriangleMesh finish(FrameWork& fw, TriangleMesh& mesh) {
   for (const Triangle& t : mesh.triangles) out.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
 
   for (Vec3& p : out.positions) p = from_plane(world, {p.x, p.y}, p.z);
-  const MeshCheck fin = check_mesh(out, opt.check_self_intersections);
+  const TopologyReport fin =
+      check_topology(out, {.self_intersections = opt.check_self_intersections, .counts_only = true});
   rep.vertices = out.positions.size();
   rep.triangles = out.triangles.size();
   rep.closed = fin.closed_manifold();
-  rep.self_intersects = fin.self_intersects;
+  rep.self_intersects = fin.self_intersections > 0;
   rep.self_intersections_checked = opt.check_self_intersections;
   rep.euler = fin.euler;
-  rep.components = static_cast<int>(fin.components);
+  rep.components = static_cast<int>(fin.components.size());
   rep.volume = fin.signed_volume;
   if (!rep.closed && opt.caps != CapStyle::Open)
     rep.warnings.push_back("the surface is not closed: " + std::to_string(fin.boundary_edges) + " boundary edges");

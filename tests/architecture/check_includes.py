@@ -6,7 +6,9 @@ A file of folder X (src/X/ or include/contour4d/X/) may include contour4d/Y/... 
 X in the layer list that docs/architecture.md gives ("Layers, lowest first: ..."). A private header (one under
 src/) is included only from its own folder, by its bare name. apps/, python/, bench/ and tests/ may include any
 public header and no private one, except a white-box test (tests/unit/*_internal_test.cpp), which may include
-private headers as "<folder>/<name>_internal.h" (src/ is on its include path).
+private headers as "<folder>/<name>_internal.h" (src/ is on its include path). src/simd/ is the one place of
+hand-written SIMD: it has no public headers, any library folder may include its private headers as
+"simd/<name>_internal.h", and no file outside it includes an intrinsics header (<immintrin.h>, <emmintrin.h>, ...).
 
 usage: check_includes.py REPO_ROOT   (exit 1 listing every wrong include)
 """
@@ -15,6 +17,8 @@ import sys
 from pathlib import Path
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+INTRINSICS = re.compile(r'^\s*#\s*include\s+<((?:[a-z]*mmintrin|arm_neon|arm_sve)\.h)>', re.M)
+SIMD = "simd"
 
 
 def layers(root):
@@ -42,10 +46,21 @@ def is_white_box(root, path, target):
             and len(parts) == 2 and target.endswith("_internal.h") and (root / "src" / target).exists())
 
 
+def is_simd_kernel(root, own, target):
+    """A library folder including one of src/simd/'s private headers by "simd/<name>_internal.h"."""
+    parts = target.split("/")
+    return (own is not None and len(parts) == 2 and parts[0] == SIMD and target.endswith("_internal.h")
+            and (root / "src" / target).exists())
+
+
 def faults_of(root, path, rank):
     own = folder_of(root, path)
     faults = []
-    for target in INCLUDE.findall(path.read_text(errors="replace")):
+    text = path.read_text(errors="replace")
+    if own != SIMD:
+        for header in INTRINSICS.findall(text):
+            faults.append(f"{path.relative_to(root)}: #include <{header}>: hand-written SIMD lives in src/{SIMD}/ only")
+    for target in INCLUDE.findall(text):
         where = f"{path.relative_to(root)}: #include \"{target}\""
         if target.startswith("contour4d/"):
             parts = target.split("/")
@@ -55,6 +70,8 @@ def faults_of(root, path, rank):
             elif own is not None and rank[other] > rank[own]:
                 faults.append(f"{where}: {own} may not include {other}, a layer above it")
         elif own is None and is_white_box(root, path, target):
+            continue
+        elif is_simd_kernel(root, own, target):
             continue
         elif "/" in target or target.startswith(".."):
             faults.append(f"{where}: reaches into another folder's private headers")
@@ -71,6 +88,8 @@ def main():
     rank = {name: i for i, name in enumerate(order)}
     missing = [d.name for d in (root / "src").iterdir() if d.is_dir() and d.name not in rank]
     faults = [f"src/{name}: a folder missing from docs/architecture.md's layers" for name in missing]
+    if (root / "include" / "contour4d" / SIMD).exists():
+        faults.append(f"include/contour4d/{SIMD}: {SIMD} has no public headers (SIMD stays private)")
     files = [p for top in ("src", "include", "apps", "python", "bench", "tests")
              for p in sorted((root / top).rglob("*"))
              if p.suffix in (".h", ".hpp", ".cpp", ".cc") and "wrong_tree" not in p.relative_to(root).parts]  # this test's own fixture

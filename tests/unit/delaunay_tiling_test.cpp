@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "contour4d/core/errors.h"
-#include "contour4d/surface/mesh_check.h"
+#include "contour4d/metrics/topology.h"
 
 namespace {
 
@@ -161,13 +161,13 @@ std::vector<Cap> fan_caps(const Polygons& lower, const Polygons& upper) {
 }
 
 void expect_closed(const c4d::TriangleMesh& mesh, long euler) {
-  const c4d::MeshCheck check = c4d::check_mesh(mesh, true);
+  const c4d::TopologyReport check = c4d::check_topology(mesh);
   EXPECT_TRUE(check.closed_manifold()) << "boundary " << check.boundary_edges << ", non-manifold "
                                        << check.nonmanifold_edges << ", misoriented " << check.misoriented_edges
                                        << ", non-manifold vertices " << check.nonmanifold_vertices;
   EXPECT_EQ(check.degenerate_triangles, 0u);
-  EXPECT_FALSE(check.self_intersects);
-  EXPECT_EQ(check.components, 1u);
+  EXPECT_EQ(check.self_intersections, 0u);
+  EXPECT_EQ(check.components.size(), 1u);
   EXPECT_EQ(check.euler, euler);
   EXPECT_GT(check.signed_volume, 0.0);
 }

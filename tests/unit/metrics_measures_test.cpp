@@ -19,8 +19,8 @@
 #include "contour4d/metrics/quality.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/metrics/volume.h"
-#include "contour4d/surface/mesh_check.h"
 #include "metrics_fixtures.h"
+#include "cgal_self_intersections.h"
 
 namespace c4d {
 namespace {
@@ -161,7 +161,7 @@ TEST(Topology, SelfIntersectionsOfFoldedFansAgreeWithCgal) {
     if (trial == 5) m.positions[7] = 0.1 * m.positions[7];  // a vertex pulled through to the middle
     std::vector<std::pair<std::size_t, std::size_t>> ours;
     const std::size_t n = count_self_intersections(m, &ours, m.triangles.size());
-    const auto cgal = self_intersecting_pairs(m);
+    const auto cgal = c4d::testing::self_intersecting_pairs(m);
     ASSERT_EQ(n, cgal.size()) << "trial " << trial;
     for (std::size_t k = 0; k < n; ++k) {
       EXPECT_EQ(ours[k].first, cgal[k][0]);
@@ -183,7 +183,7 @@ TEST(Topology, SelfIntersectionsOfFoldedFansAgreeWithCgal) {
   }
   for (std::uint32_t k = 0; k < 7; ++k) twice.triangles.push_back({0, 1 + k, 1 + (k + 1) % 7});
   const std::size_t n = count_self_intersections(twice);
-  EXPECT_EQ(n, self_intersecting_pairs(twice).size());
+  EXPECT_EQ(n, c4d::testing::self_intersecting_pairs(twice).size());
   EXPECT_GT(n, 0u);
 }
 
@@ -212,7 +212,7 @@ TEST(Topology, SelfIntersectionsOfTriangleSoupsAgreeWithCgal) {
     }
     std::vector<std::pair<std::size_t, std::size_t>> ours;
     const std::size_t n = count_self_intersections(m, &ours, std::numeric_limits<std::size_t>::max());
-    const auto cgal = self_intersecting_pairs(m);
+    const auto cgal = c4d::testing::self_intersecting_pairs(m);
     ASSERT_EQ(n, cgal.size()) << "trial " << trial;
     ASSERT_EQ(ours.size(), n) << "trial " << trial;
     ASSERT_GT(n, 0u) << "trial " << trial;
@@ -293,6 +293,51 @@ TEST(Topology, NonManifoldAndDegenerateElementsAreReported) {
   EXPECT_TRUE(has_fault(t.faults, "1 degenerate triangle (zero area)")) << joined(t.faults);
   EXPECT_TRUE(has_fault(t.faults, "1 duplicate vertex")) << joined(t.faults);
   EXPECT_TRUE(has_fault(check_topology(TriangleMesh{}).faults, "no triangles"));
+}
+
+// The counts-only check (what the surface stage runs on its own meshes) counts what the full check
+// counts, on good meshes and on each fault: holes, flips, fins, pinched vertices, inward, degenerate.
+TEST(Topology, CountsOnlyAgreesWithTheFullCheck) {
+  std::vector<TriangleMesh> meshes = {test::icosphere(10.0, 2), test::torus(10.0, 3.0, 40, 16)};
+  TriangleMesh m = test::icosphere(10.0, 2);
+  m.triangles.erase(m.triangles.begin() + 5);  // a hole
+  meshes.push_back(m);
+  m = test::icosphere(10.0, 2);
+  std::swap(m.triangles[17][1], m.triangles[17][2]);  // a flipped triangle
+  meshes.push_back(m);
+  m = test::icosphere(3.0, 1);
+  m.positions.push_back({10, 10, 10});
+  m.triangles.push_back({m.triangles[0][0], m.triangles[0][1], static_cast<std::uint32_t>(m.positions.size() - 1)});
+  meshes.push_back(m);  // a fin
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
+  meshes.push_back(m);  // two tetrahedra on one vertex
+  m = test::icosphere(5.0, 1);
+  for (Triangle& tr : m.triangles) std::swap(tr[1], tr[2]);  // inward
+  m.triangles.push_back({0, 1, 999});                        // an invalid index
+  meshes.push_back(m);
+  for (std::size_t k = 0; k < meshes.size(); ++k) {
+    const TopologyReport full = check_topology(meshes[k]);
+    const TopologyReport fast = check_topology(meshes[k], {.counts_only = true});
+    SCOPED_TRACE("mesh " + std::to_string(k));
+    EXPECT_EQ(fast.boundary_edges, full.boundary_edges);
+    EXPECT_EQ(fast.nonmanifold_edges, full.nonmanifold_edges);
+    EXPECT_EQ(fast.nonmanifold_vertices, full.nonmanifold_vertices);
+    EXPECT_EQ(fast.misoriented_edges, full.misoriented_edges);
+    EXPECT_EQ(fast.degenerate_triangles, full.degenerate_triangles);
+    EXPECT_EQ(fast.invalid_triangles, full.invalid_triangles);
+    EXPECT_EQ(fast.edges, full.edges);
+    EXPECT_EQ(fast.euler, full.euler);
+    EXPECT_EQ(fast.components.size(), full.components.size());
+    EXPECT_EQ(fast.signed_volume, full.signed_volume);
+    EXPECT_EQ(fast.self_intersections, full.self_intersections);
+    EXPECT_EQ(fast.closed_manifold(), full.closed_manifold());
+    long euler = 0;
+    for (const ComponentTopology& c : full.components) euler += c.euler;
+    if (full.vertex_manifold()) {
+      EXPECT_EQ(full.euler, euler);
+    }
+  }
 }
 
 TEST(Quality, IcosphereAnglesArePlausibleAndRigidInvariant) {

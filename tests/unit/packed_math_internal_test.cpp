@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "motion/packed_math_internal.h"
+#include "simd/packed_math_internal.h"
 
 namespace c4d::detail {
 namespace {

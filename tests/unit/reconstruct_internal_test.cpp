@@ -13,7 +13,8 @@
 
 #include "contour4d/core/errors.h"
 #include "contour4d/pipeline/input.h"
-#include "contour4d/surface/mesh_check.h"
+#include "contour4d/metrics/topology.h"
+#include "cgal_self_intersections.h"
 #include "surface/surface_tuning_internal.h"
 
 namespace {
@@ -120,16 +121,16 @@ Angles angles(const c4d::TriangleMesh& m) {
 }
 
 void expect_closed(const c4d::TriangleMesh& m, long euler, std::size_t components) {
-  const c4d::MeshCheck c = c4d::check_mesh(m, true);
+  const c4d::TopologyReport c = c4d::check_topology(m);
   EXPECT_EQ(c.boundary_edges, 0u);
   EXPECT_EQ(c.nonmanifold_edges, 0u);
   EXPECT_EQ(c.nonmanifold_vertices, 0u);
   EXPECT_EQ(c.misoriented_edges, 0u);
   EXPECT_EQ(c.degenerate_triangles, 0u);
   EXPECT_EQ(c.euler, euler);
-  EXPECT_EQ(c.components, components);
+  EXPECT_EQ(c.components.size(), components);
   EXPECT_GT(c.signed_volume, 0.0);
-  EXPECT_FALSE(c.self_intersects);
+  EXPECT_EQ(c.self_intersections, 0u);
 }
 
 // The tiled surface as it is: no remeshing, no rows, no fairing.
@@ -208,7 +209,7 @@ TEST(Reconstruct, BranchOneToTwoAndTwoToOne) {
       SCOPED_TRACE(opt.fairing ? "default options" : "coarse");
       c4d::SurfaceReport rep;
       const auto m = frame_of(seq, 0, opt, &rep);
-      for (const auto& pr : c4d::self_intersecting_pairs(m)) {
+      for (const auto& pr : c4d::testing::self_intersecting_pairs(m)) {
         for (std::uint32_t t : pr)
           for (auto v : m.triangles[t])
             std::printf(" (%.3f %.3f %.3f)", m.positions[v].x, m.positions[v].y, m.positions[v].z);
@@ -279,7 +280,7 @@ TEST(Reconstruct, OpenCapsLeaveTheEndsOpen) {
   c4d::SurfaceOptions o;
   o.caps = c4d::CapStyle::Open;
   const auto m = frame_of(seq, 0, o);
-  const auto c = c4d::check_mesh(m);
+  const auto c = c4d::check_topology(m, {.self_intersections = false});
   EXPECT_GT(c.boundary_edges, 0u);
   EXPECT_EQ(c.nonmanifold_edges, 0u);
   EXPECT_EQ(c.euler, 0);  // a tube

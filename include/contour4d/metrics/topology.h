@@ -15,6 +15,10 @@ namespace c4d {
 //! Options of check_topology.
 struct TopologyOptions {
   bool self_intersections = true;  //!< run the (costlier) triangle-triangle intersection test
+  //! Counts only, for a stage checking its own meshes on the way: no search for duplicate vertices
+  //! and triangles, no orientation flood (`flipped_triangles` 0, `orientable` true) and no
+  //! per-component counts (`components` hold their triangle counts only, `genus` is -1).
+  bool counts_only = false;
 };
 
 //! One connected component (triangles joined through shared edges).
@@ -45,6 +49,7 @@ struct TopologyReport {
   bool orientable = true;                     //!< false when no consistent orientation exists (Möbius-like)
   std::vector<ComponentTopology> components;  //!< by first triangle index
   int genus = -1;                             //!< sum of the components' genus; -1 when one is undefined
+  long euler = 0;                             //!< V − E + F of the whole mesh (used vertices, valid triangles)
   bool self_intersections_checked = false;    //!< the intersection test was run
   std::size_t self_intersections = 0;         //!< pairs of triangles that intersect beyond a shared vertex or edge
   double signed_volume = 0.0;                 //!< enclosed volume (mm³), positive when facing outward
@@ -55,6 +60,8 @@ struct TopologyReport {
   bool vertex_manifold() const { return nonmanifold_vertices == 0; }
   bool consistently_oriented() const { return misoriented_edges == 0 && orientable; }
   bool outward() const { return signed_volume > 0.0; }
+  //! Closed, and a 2-manifold whose neighbouring triangles agree in orientation.
+  bool closed_manifold() const { return closed() && edge_manifold() && vertex_manifold() && misoriented_edges == 0; }
   bool ok() const { return faults.empty(); }
 };
 

@@ -1,7 +1,7 @@
-// The core's AVX kernels (avx_internal.h), compiled with AVX enabled (src/CMakeLists.txt) and called only
-// where the CPU has it. This file must use nothing with external linkage that a header defines inline: an
+// The sparse LDLᵀ factorisation's AVX kernels (ldlt_internal.h), compiled with AVX enabled
+// (src/simd/CMakeLists.txt) and called only where the CPU has it. This file must use nothing with external linkage that a header defines inline: an
 // AVX copy of such a function could replace the plain one everywhere at link time (hence raw pointers).
-#include "avx_internal.h"
+#include "ldlt_internal.h"
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -10,7 +10,6 @@
 namespace c4d::detail {
 
 #if defined(__AVX__)
-bool avx_available() { return __builtin_cpu_supports("avx"); }
 
 void ldlt_rows_below_avx(double* y, const int* rows, int below, const double* const* columns, const double* yv,
                          int run) {
@@ -97,7 +96,6 @@ void ldlt_substitute3_avx(const int* outer, const int* counts, const int* inner,
     }
 }
 #else
-bool avx_available() { return false; }
 void ldlt_substitute3_avx(const int*, const int*, const int*, const double*, long, const double*, long, double*) {}
 void ldlt_rows_below_avx(double*, const int*, int, const double* const*, const double*, int) {}
 #endif

@@ -1,11 +1,12 @@
 #pragma once
 // Square roots and divisions two at a time (SSE2), bit for bit equal to the scalar ones, for the morph's
-// hot loops: the relaxation's equilateral pull (morph_relax.cpp) and the RBF's multiquadrics (rbf.cpp).
+// hot loops: the relaxation's equilateral pull (motion/morph_relax.cpp) and the RBF's multiquadrics
+// (motion/rbf.cpp).
 //
 // IEEE 754 division and square root are correctly rounded, packed or not, so `sqrt2` and
 // `sqrt_of_ratios2` give exactly what two calls of `std::sqrt(a)` and `std::sqrt(a / b)` give: they only
 // let the loops issue one instruction for two of them. Without SSE2 they fall back to the scalar calls.
-// Internal linkage, as simd_lanes_internal.h: a copy compiled with other instruction sets (simd_avx.cpp)
+// Internal linkage, as lanes_internal.h: a copy compiled with other instruction sets (motion/simd_avx.cpp)
 // could not stand in for these at link time.
 #include <cmath>
 

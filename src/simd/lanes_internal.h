@@ -1,17 +1,15 @@
 #pragma once
-// SIMD lanes for the morph's hot loops (sweep_lanes_internal.h, rbf_lanes_internal.h): two doubles with
-// SSE2, four with AVX (only in code compiled for AVX, simd_avx.cpp), and three coordinates with vec.h's
-// operations in vec.h's order, so that each lane computes what the one-point code computes, bit for bit
-// (IEEE addition, multiplication, division and square root are correctly rounded, packed or not; x86-64's
-// baseline and AVX have no fused multiply-add, so the compiler forms none: a build for a CPU with FMA
-// needs -ffp-contract=off to keep this).
+// SIMD lanes for the morph's hot loops (motion/sweep_lanes_internal.h, motion/rbf_lanes_internal.h): two
+// doubles with SSE2, four with AVX (only in code compiled for AVX, motion/simd_avx.cpp), and three
+// coordinates with core/vec.h's operations in vec.h's order, so that each lane computes what the one-point
+// code computes, bit for bit (IEEE addition, multiplication, division and square root are correctly rounded,
+// packed or not; x86-64's baseline and AVX have no fused multiply-add, so the compiler forms none: a build
+// for a CPU with FMA needs -ffp-contract=off to keep this).
 //
 // Everything here has internal linkage: the AVX instantiations are compiled in their own file with AVX
 // enabled, the SSE2 ones in the files that use them, and neither may stand in for the other at link time.
 
 #include <cstddef>
-
-#include "contour4d/core/vec.h"
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -74,8 +72,9 @@ struct Lanes3 {
   V x, y, z;
 
   static Lanes3 zero() { return {L::zero(), L::zero(), L::zero()}; }
-  // Lane k from points[k].
-  static Lanes3 gather(const Vec3* const* points) {
+  // Lane k from points[k] (P: a point with x, y, z, such as core/vec.h's Vec3).
+  template <class P>
+  static Lanes3 gather(const P* const* points) {
     double x[L::n], y[L::n], z[L::n];
     for (int k = 0; k < L::n; ++k) {
       x[k] = points[k]->x;
@@ -84,7 +83,8 @@ struct Lanes3 {
     }
     return {L::from(x), L::from(y), L::from(z)};
   }
-  void scatter(Vec3* const* points) const {
+  template <class P>
+  void scatter(P* const* points) const {
     double a[L::n], b[L::n], c[L::n];
     L::store(a, x);
     L::store(b, y);
