@@ -39,6 +39,7 @@ int run_evaluate(const EvaluateArgs& a) {
     InputOptions in;
     in.label = a.label;
     in.contour_types = a.contour_types;
+    in.contour_tolerance_mm = 0.0;  // conformity to the contours as drawn, not as smoothed
     contours = read_contours(a.contours, in).sequence;
   }
   std::optional<MeshFrames> truth;
@@ -81,8 +82,10 @@ void add_evaluate_command(CLI::App& root, std::vector<Command>& commands) {
       "  contour4d evaluate out --check                        # exit code 25 on any mesh fault (CI)\n");
   auto args = std::make_shared<EvaluateArgs>();
   app->add_option("OUTDIR", args->outdir, "output folder of a reconstruction (mesh.pvd, frames/)")->required();
-  app->add_option("--contours", args->contours,
-                  "the input contours (JSON file or GPFile folder): conformity, Simpson volume, slab");
+  app->add_option(
+      "--contours", args->contours,
+      "the input contours (JSON file or GPFile folder), as drawn (not smoothed): conformity, Simpson volume, "
+      "creases along the contour lines, slab");
   app->add_option("--truth,--reference", args->truth,
                   "folder of reference meshes (same layout; frame i compares with frame i): a phantom's truth, each "
                   "frame's own one-frame surface, or the exact meshes of a packed model (distances both ways and "

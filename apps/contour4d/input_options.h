@@ -8,7 +8,8 @@
 
 namespace c4d::cli {
 
-//! Adds --type, --label, --labels, --slice-axis, --space, --frame-ms, --cycle-ms and --strict, filling `o`.
+//! Adds --type, --label, --labels, --slice-axis, --space, --frame-ms, --cycle-ms, --exact-contours,
+//! --contour-tolerance and --strict, filling `o`.
 //! With `labels`, --label is repeatable and may be "all" (reconstruct: several structures in one run).
 inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::string>* labels = nullptr) {
   app->add_option("--type", o.contour_types,
@@ -41,6 +42,15 @@ inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::s
   app->add_option("--cycle-ms", o.cycle_ms,
                   "the same given as the cardiac cycle length in ms (frames spread evenly over it)")
       ->check(CLI::PositiveNumber);
+  auto* exact = app->add_flag_callback(
+      "--exact-contours", [&o] { o.contour_tolerance_mm = 0.0; },
+      "keep traced contours exactly as drawn (the surface then passes through every point and creases along "
+      "each contour); the default smooths contours traced on images within half a pixel");
+  app->add_option("--contour-tolerance", o.contour_tolerance_mm,
+                  "how far (mm) smoothing may move a traced contour (default: half the pixel size of the images "
+                  "they were traced on; exact inputs such as phantoms are not smoothed)")
+      ->check(CLI::NonNegativeNumber)
+      ->excludes(exact);
   app->add_flag("--strict", o.strict,
                 "refuse flawed contours (open arcs, loops, spikes, too few points, two slice ids on one plane) with "
                 "their exit codes instead of repairing them (the default repairs each and lists it in the report)");

@@ -154,6 +154,11 @@ std::map<int, GpFileSlice> parse_slice_info(const std::string& text, const std::
       parse_fail(ErrorCode::Parse, file, n, "ImageOrientationPatient directions are not two orthogonal unit vectors",
                  kInfoHint);
     s.normal = normalized(nrm);
+    if (key("PixelSpacing") + 2 < f.size()) {
+      double ps[2];
+      numbers("PixelSpacing", 2, ps);
+      if (ps[0] > 0.0 && ps[1] > 0.0) s.pixel_mm = 0.5 * (ps[0] + ps[1]);
+    }
     if (slices.count(s.id))
       parse_fail(ErrorCode::Parse, file, n, "slice id " + std::to_string(s.id) + " is listed twice", kInfoHint);
     slices[s.id] = s;

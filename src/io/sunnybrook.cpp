@@ -244,6 +244,7 @@ InputResult read_sunnybrook(const fs::path& folder, const SunnybrookOptions& opt
 
   std::vector<RawContour> raw;
   std::vector<int> index(static_cast<std::size_t>(nf), 0);
+  double pixel_sum = 0.0;
   for (const Item& it : items) {
     const std::vector<Vec2> px = read_points(it.file.path);
     RawContour rc;
@@ -253,6 +254,7 @@ InputResult read_sunnybrook(const fs::path& folder, const SunnybrookOptions& opt
     rc.contour.label = it.file.inner ? "lv-endo" : "lv-epi";
     rc.contour.slice = it.slice;
     const DicomInfo& d = it.dicom;
+    pixel_sum += 0.5 * (d.dr + d.dc);
     for (const Vec2& q : px) {
       Vec3 p = d.ipp + (q.x * d.dc) * d.x + (q.y * d.dr) * d.y;
       if (options.space == "RAS") p = {-p.x, -p.y, p.z};
@@ -264,6 +266,7 @@ InputResult read_sunnybrook(const fs::path& folder, const SunnybrookOptions& opt
   r.sequence = build_sequence(raw, nf, times, folder.string(), options.stack);
   r.sequence.space = options.space;
   r.format = "sunnybrook";
+  r.pixel_mm = items.empty() ? 0.0 : pixel_sum / static_cast<double>(items.size());
   std::string phases;
   for (const auto& [phase, f] : frame_of) phases += (phases.empty() ? "" : ", ") + std::to_string(phase);
   r.notes.push_back(std::to_string(items.size()) + " contour files on " + std::to_string(cache.size()) +

@@ -160,6 +160,7 @@ Evaluation evaluate(const MeshFrames& meshes, const Sequence* contours, const Me
     if (has_contours) {
       samples = metrics_internal::contour_samples(contours->frames[f], options.conformity.step);
       fe.conformity = summarize_distances(tree.distances(samples));
+      fe.creases = crease_angles(mesh, *contours, contours->frames[f]);
     }
     if (has_truth) {
       const metrics_internal::TriangleDistance truth_tree(truth->meshes[f]);
@@ -194,6 +195,27 @@ Evaluation evaluate(const MeshFrames& meshes, const Sequence* contours, const Me
   return ev;
 }
 
+// The angles between neighbouring triangles on the contour lines against those between them.
+Json creases_json(const CreaseAngles& c, int frame = -1) {
+  Json j{{"on_contours_p95_deg", r6(c.on_contours_p95)},
+         {"between_p95_deg", r6(c.between_p95)},
+         {"ratio", r6(c.ratio())},
+         {"on_end_contours_p95_deg", r6(c.on_ends_p95)},
+         {"end_ratio", r6(c.ends_ratio())},
+         {"edges_on_contours", c.on_contours},
+         {"edges_between", c.between}};
+  if (frame >= 0) j["frame"] = frame;
+  return j;
+}
+
+// The frame whose contour lines crease most against its wall (largest ratio), or null.
+const FrameEvaluation* worst_creases(const Evaluation& ev) {
+  const FrameEvaluation* worst = nullptr;
+  for (const FrameEvaluation& fe : ev.frames)
+    if (fe.creases && (!worst || fe.creases->ratio() > worst->creases->ratio())) worst = &fe;
+  return worst;
+}
+
 std::string format_evaluation_json(const Evaluation& ev) {
   Json j;
   j["format"] = "contour4d-evaluation";
@@ -208,6 +230,9 @@ std::string format_evaluation_json(const Evaluation& ev) {
        "area-weighted surface distances both ways, exact point-to-triangle (Table 5); slab: between first and last "
        "slice"},
       {"simpson", "sum over slices of enclosed area × disc thickness (half-way to each neighbouring slice)"},
+      {"creases",
+       "95th percentile of the angle between the normals of an edge's two triangles: on the contour lines (edges in a "
+       "slice plane), on the first and last contours, and between the slices"},
       {"correspondence", "median relative edge-length change against each edge's median length over all frames"}};
   Json frames = Json::array();
   for (const FrameEvaluation& fe : ev.frames) {
@@ -220,6 +245,7 @@ std::string format_evaluation_json(const Evaluation& ev) {
     f["quality"] = quality_json(fe.quality);
     f["volume_mm3"] = r6(fe.volume);
     if (fe.conformity) f["conformity"] = stats_json(*fe.conformity);
+    if (fe.creases) f["creases"] = creases_json(*fe.creases);
     if (fe.simpson) {
       Json slices = Json::array();
       for (const SliceArea& s : fe.simpson->slices)
@@ -298,6 +324,8 @@ std::string format_evaluation_json(const Evaluation& ev) {
   for (const FrameEvaluation& fe : ev.frames)
     if (fe.normals && (!worst || fe.normals->p99_deg > worst->normals->p99_deg)) worst = &fe;
   if (worst) s["normals_to_truth_worst_frame"] = normals_json(*worst->normals, worst->frame);
+  if (const FrameEvaluation* crease = worst_creases(ev))
+    s["creases_worst_frame"] = creases_json(*crease->creases, crease->frame);
   s["mesh_volume"] = ef_json(ev.mesh_ef);
   if (ev.simpson_ef) s["simpson_volume"] = ef_json(*ev.simpson_ef);
   j["summary"] = s;
@@ -354,6 +382,12 @@ std::string format_evaluation_table(const Evaluation& ev) {
     out += fmt::format("  conformity: mean of frame means {:.4f} mm, std {:.4f} mm (contour samples every {:g} mm)\n",
                        m.mean, m.std, ev.conformity_step);
   }
+  if (const FrameEvaluation* c = worst_creases(ev))
+    out += fmt::format(
+        "  creases (95th percentile of the angle between neighbouring triangles), worst frame {}: {:.2f}° on the "
+        "contour lines, {:.2f}° between them ({:.2f}×); {:.2f}° on the end contours ({:.2f}×)\n",
+        c->frame, c->creases->on_contours_p95, c->creases->between_p95, c->creases->ratio(), c->creases->on_ends_p95,
+        c->creases->ends_ratio());
   if (!ev.frames.empty()) {
     const std::size_t n = ev.frames.size();
     for (std::size_t f : {std::size_t{0}, n / 2, n - 1}) {

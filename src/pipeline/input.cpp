@@ -61,6 +61,18 @@ std::string lower_extension(const fs::path& p) {
 
 namespace {
 
+// The pixel size of the slices a GPFile folder's contours were traced on (mean over the slices used; 0: none).
+double mean_pixel_mm(const GpFileResult& r) {
+  double sum = 0.0;
+  int count = 0;
+  for (const GpFileSlice& s : r.slices)
+    if (s.used && s.pixel_mm > 0.0) {
+      sum += s.pixel_mm;
+      ++count;
+    }
+  return count > 0 ? sum / count : 0.0;
+}
+
 InputResult read_any(const fs::path& input, const InputOptions& options) {
   Location where;
   where.file = input.string();
@@ -108,6 +120,7 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
     result.repairs = std::move(r.repairs);
     result.format = "gpfile";
     result.notes = std::move(r.notes);
+    result.pixel_mm = mean_pixel_mm(r);
   } else if (lower_extension(input) == ".json") {
     if (!options.contour_types.empty())
       throw InvalidInput(ErrorCode::Usage, where, "contour types (--type) apply to GPFile folders only",
@@ -160,8 +173,35 @@ void apply_frame_times(InputResult& r, const InputOptions& o) {
   r.notes.push_back(fmt::format("frame times: {:g} ms apart ({})", step, r.timing));
 }
 
-// The note on repairs and the frame times, for every input.
+// The share of the tolerance the smoothing spline may use: the rest is left to the mesh (its chords, the
+// frames' fit), so that the surface stays within the tolerance of every traced point.
+constexpr double kSplineShare = 0.9;
+
+// Traced contours smoothed within their tolerance (contour_smoothing.h): half a pixel of the images they were
+// traced on unless the user gives one; inputs without pixels (exact or fitted contours) are left as they are.
+void smooth_traced_contours(InputResult& r, const InputOptions& o) {
+  if (o.contour_tolerance_mm >= 0.0) {
+    r.smoothing_tolerance_mm = o.contour_tolerance_mm;
+    r.smoothing_source = o.contour_tolerance_mm > 0.0 ? "--contour-tolerance" : "--exact-contours";
+  } else if (r.pixel_mm > 0.0) {
+    r.smoothing_tolerance_mm = 0.5 * r.pixel_mm;
+    r.smoothing_source =
+        fmt::format("half the pixel size of the images the contours were traced on ({:.4g} mm)", r.pixel_mm);
+  } else {
+    r.smoothing_source = "exact contours (no pixel size in this input)";
+  }
+  if (!(r.smoothing_tolerance_mm > 0.0)) return;
+  r.smoothing = smooth_contours(r.sequence, kSplineShare * r.smoothing_tolerance_mm);
+  double worst = 0.0;
+  for (const ContourSmoothing& c : r.smoothing) worst = std::max(worst, c.moved_max_mm);
+  r.notes.push_back(fmt::format(
+      "contours smoothed within {:.3g} mm ({}); moved at most {:.3g} mm; --exact-contours keeps them as traced",
+      r.smoothing_tolerance_mm, r.smoothing_source, worst));
+}
+
+// The note on repairs, the smoothing and the frame times, for every input.
 void finish_input(InputResult& result, const InputOptions& options) {
+  smooth_traced_contours(result, options);
   if (!result.repairs.empty())
     result.notes.push_back(
         fmt::format("repaired {} contour flaw(s) instead of refusing the input (--strict refuses): "

@@ -46,6 +46,26 @@ Json repairs_json(const std::vector<ContourRepair>& repairs) {
   return a;
 }
 
+// How the contours were smoothed (contour_smoothing.h): the tolerance, where it came from, and each contour.
+Json smoothing_json(const InputResult& read) {
+  Json each = Json::array();
+  double worst = 0.0;
+  for (const ContourSmoothing& c : read.smoothing) {
+    worst = std::max(worst, c.moved_max_mm);
+    each.push_back({{"frame", c.frame},
+                    {"slice", c.slice},
+                    {"contour", c.contour},
+                    {"stiffness", c.stiffness},
+                    {"moved_max_mm", c.moved_max_mm},
+                    {"moved_mean_mm", c.moved_mean_mm}});
+  }
+  return {{"tolerance_mm", read.smoothing_tolerance_mm},
+          {"source", read.smoothing_source},
+          {"smoothed", !read.smoothing.empty()},
+          {"moved_max_mm", worst},
+          {"contours", each}};
+}
+
 Json surface_json(const SurfaceReport& r) {
   return {{"contours", r.contours},
           {"caps", r.caps},
@@ -100,6 +120,7 @@ Json start_report(const InputResult& read, const std::string& input, const Recon
       {"stack_normal", {read.sequence.normal.x, read.sequence.normal.y, read.sequence.normal.z}},
       {"frame_times", {{"source", read.timing}, {"known", read.timing != "unknown"}}},
       {"repairs", repairs_json(read.repairs)},
+      {"contour_smoothing", smoothing_json(read)},
       {"options",
        {{"edge_mm", a.edge},
         {"cap", a.cap},

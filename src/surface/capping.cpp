@@ -316,13 +316,11 @@ double projected_area(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 0.5 * cross(Vec2{b.x - a.x, b.y - a.y}, Vec2{c.x - a.x, c.y - a.y});
 }
 
-double lifted(double u, double height, double exponent) {
-  return height * (1.0 - std::pow(1.0 - u / height, exponent));
-}
+// The lift of fill_cap: u + c·u²/height. Its derivative at the rim (u = 0) is 1, so the cap leaves the end
+// contour with the slope the fairing gave it, the wall's own.
+double lifted(double u, double height, double c) { return u + c * u * u / height; }
 
-double cap_height_of(const Vec3& p, const CapFrame& frame) {
-  return std::clamp(frame.dir * (p.z - frame.z0), 0.0, frame.height);
-}
+double cap_height_of(const Vec3& p, const CapFrame& frame) { return std::max(0.0, frame.dir * (p.z - frame.z0)); }
 
 // The vertices a triangle list uses (sorted, unique) and its triangles in indices into that list.
 struct LocalTriangles {
@@ -345,9 +343,9 @@ LocalTriangles local_triangles(const std::vector<Triangle>& triangles) {
   return out;
 }
 
-// The cap's volume over its plane as a function of the lift's exponent: the projected areas and the
-// vertices' heights are taken once, and each call lifts every vertex once (fill_cap's bisection calls it
-// 60 times). The sums run in the triangles' order, as the direct formula would.
+// The cap's volume over its plane as a function of the lift's coefficient: the projected areas and the
+// vertices' heights are taken once, and each call lifts every vertex once. The sums run in the triangles'
+// order, as the direct formula would.
 class CapVolume {
  public:
   CapVolume(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame)
@@ -358,8 +356,8 @@ class CapVolume {
     lifted_.resize(u_.size());
   }
 
-  double operator()(double exponent) {
-    for (std::size_t k = 0; k < u_.size(); ++k) lifted_[k] = lifted(u_[k], height_, exponent);
+  double operator()(double c) {
+    for (std::size_t k = 0; k < u_.size(); ++k) lifted_[k] = lifted(u_[k], height_, c);
     double volume = 0.0;
     for (std::size_t f = 0; f < local_.triangles.size(); ++f) {
       double sum = 0.0;
@@ -382,7 +380,7 @@ class CapVolume {
 
 double cap_volume(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame) {
   if (frame.height <= 0.0) return 0.0;
-  return CapVolume(positions, triangles, frame)(1.0);
+  return CapVolume(positions, triangles, frame)(0.0);
 }
 
 double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill) {
@@ -401,32 +399,29 @@ double extrapolated_cap_volume(double area, double neighbour_area, double spacin
 
 double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame,
                 double target) {
-  if (frame.height <= 0.0 || triangles.empty()) return 1.0;
+  if (frame.height <= 0.0 || triangles.empty()) return 0.0;
   CapVolume volume(positions, triangles, frame);
-  if (volume(1.0) >= target) return 1.0;
-  double lo = 1.0, hi = 64.0;
-  if (volume(hi) <= target) {
-    lo = hi;
-  } else {
-    for (int it = 0; it < 60; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (volume(mid) < target ? lo : hi) = mid;
-    }
-  }
+  const double before = volume(0.0);
+  if (before >= target) return 0.0;
+  // The volume is linear in c (heights over fixed projected areas): one more evaluation gives its slope.
+  const double per_c = volume(1.0) - before;
+  if (!(per_c > 0.0)) return 0.0;
+  const double c = (target - before) / per_c;
   for (std::uint32_t v : volume.vertices()) {
     const double u = frame.dir * (positions[v].z - frame.z0);
-    if (u > 0.0 && u < frame.height) positions[v].z = frame.z0 + frame.dir * lifted(u, frame.height, lo);
+    if (u > 0.0) positions[v].z = frame.z0 + frame.dir * lifted(u, frame.height, c);
   }
-  return lo;
+  return c;
 }
 
 namespace {
 
-// The widest a wall may be widened (radius × 1.5 at t = 2/3): a bound against a poor target, far
-// above the 0.29 the bifurcation phantom's 1.7 mm² end contour needs.
+// The widest a wall may be widened (radius × 1.5 half-way between the slices): a bound against a poor target.
 constexpr double kMaxBandWidening = 0.5;
 
-double band_phi(double t) { return 6.75 * t * t * (1.0 - t); }
+// The widening's profile between the neighbouring slice (t = 0) and the end contour (t = 1): zero with a zero
+// slope at both, so the wall keeps its slope across both contours and into the cap.
+double band_phi(double t) { return 16.0 * t * t * (1.0 - t) * (1.0 - t); }
 
 Vec3 widened(const Vec3& p, const EndBand& band, double alpha) {
   const double span = band.z_end - band.z_ref;

@@ -444,12 +444,11 @@ struct FrameWork {
   PairLinks pair_links;                   // per slice pair: linked node pairs
   std::vector<Triangle> to_remesh;        // band triangles left for remeshing (branchings)
   RemeshEngine engine = RemeshEngine::Cgal;
-  double lowest = 0.0, highest = 0.0;  // the caps' reach below the first and above the last slice
-  std::vector<char> fixed;             // per vertex: kept in place by fairing and remeshing
-  std::vector<char> keep_shape;        // per vertex: a dome vertex that keeps its shape
-  std::vector<double> row_scale;       // per vertex: the fairing row's scale (coarse caps)
-  std::vector<char> scale_aware;       // per vertex: its fairing term is scale-aware (ring caps)
-  std::vector<CapFill> fills;          // the Rounded caps to fill towards the sections' trend
+  std::vector<char> fixed;        // per vertex: kept in place by fairing and remeshing
+  std::vector<char> keep_shape;   // per vertex: a dome vertex that keeps its shape
+  std::vector<double> row_scale;  // per vertex: the fairing row's scale (coarse caps)
+  std::vector<char> scale_aware;  // per vertex: its fairing term is scale-aware (ring caps)
+  std::vector<CapFill> fills;     // the Rounded caps to fill towards the sections' trend
 };
 
 // Step 1: the structure to build (SurfaceOptions::label, or the only one present).
@@ -847,8 +846,6 @@ void add_caps(FrameWork& fw) {
   auto& slices = fw.slices;
   auto& contour_vertices = fw.contour_vertices;
   auto& pair_links = fw.pair_links;
-  auto& lowest = fw.lowest;
-  auto& highest = fw.highest;
   auto& fixed = fw.fixed;
   auto& keep_shape = fw.keep_shape;
   auto& row_scale = fw.row_scale;
@@ -861,8 +858,6 @@ void add_caps(FrameWork& fw) {
     if (s > 0) return ff.slices[s].offset - ff.slices[s - 1].offset;
     return std::numeric_limits<double>::infinity();  // single slice: the dome is limited by the region's width
   };
-  lowest = 0.0;
-  highest = slices.back().plane.origin.z;
   fixed.assign(b.positions.size(), 0);
   std::fill(fixed.begin(), fixed.begin() + contour_vertices, 1);
   for (std::size_t s = 0; s < slices.size(); ++s)
@@ -910,10 +905,6 @@ void add_caps(FrameWork& fw) {
           cop.uniform_scale = ring ? kRingCapScale : kUniformCapScale;
         }
         const CapMesh cap = cap_of_slice(loops, opt.caps, cop, loc, slices[s].slice->id);
-        for (double hk : cap.height) {
-          lowest = std::min(lowest, slices[s].plane.origin.z - (top ? 0.0 : hk));
-          highest = std::max(highest, slices[s].plane.origin.z + (top ? hk : 0.0));
-        }
         std::vector<std::uint32_t> id;
         for (int g : group) id.insert(id.end(), nodes[g].chain.begin(), nodes[g].chain.end());
         const double dir = top ? 1.0 : -1.0;
@@ -971,8 +962,6 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
   auto& nodes = fw.nodes;
   auto& slices = fw.slices;
   auto& pair_links = fw.pair_links;
-  auto& lowest = fw.lowest;
-  auto& highest = fw.highest;
   auto& fixed = fw.fixed;
   auto& keep_shape = fw.keep_shape;
   auto& row_scale = fw.row_scale;
@@ -1006,9 +995,6 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
     else
       rep.warnings.push_back("fairing failed (singular system); the surface is left unsmoothed");
   }
-  // No overshoot beyond the caps' height (at most half a spacing past the end contours).
-  if (moved)
-    for (Vec3& p : mesh.positions) p.z = std::clamp(p.z, lowest, highest);
   // Faired domes fall short of ends that keep their size (a tube cut across): lift each towards the
   // volume the trend of its last two sections gives, within its height.
   if (moved)

@@ -23,14 +23,15 @@ struct GpFileOptions {
 
 //! One slice of SliceInfoFile.txt: a DICOM image plane (mm, LPS).
 struct GpFileSlice {
-  int id = 0;         //!< slice id (column 5 of the GPFiles)
-  std::string image;  //!< DICOM file name of the slice
-  Vec3 position;      //!< ImagePositionPatient: centre of the first pixel (mm)
-  Vec3 row;           //!< first ImageOrientationPatient triplet (unit direction along a row)
-  Vec3 column;        //!< second ImageOrientationPatient triplet (unit direction along a column)
-  Vec3 normal;        //!< row × column (unit)
-  bool used = false;  //!< true when its contours went into the sequence
-  std::string note;   //!< why it was skipped, when it was
+  int id = 0;             //!< slice id (column 5 of the GPFiles)
+  std::string image;      //!< DICOM file name of the slice
+  Vec3 position;          //!< ImagePositionPatient: centre of the first pixel (mm)
+  Vec3 row;               //!< first ImageOrientationPatient triplet (unit direction along a row)
+  Vec3 column;            //!< second ImageOrientationPatient triplet (unit direction along a column)
+  Vec3 normal;            //!< row × column (unit)
+  double pixel_mm = 0.0;  //!< PixelSpacing, the mean of its two values (mm); 0 when the line has none
+  bool used = false;      //!< true when its contours went into the sequence
+  std::string note;       //!< why it was skipped, when it was
 };
 
 //! What was read from a GPFile folder.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contour4d/core/contour_repair.h"
+#include "contour4d/core/contour_smoothing.h"
 #include "contour4d/core/stack.h"
 
 namespace c4d {
@@ -19,6 +20,11 @@ struct InputResult {
   std::string timing;                  //!< where frame times come from: "data", "--frame-ms", "--cycle-ms",
                                        //!< "single frame" or "unknown" (frames numbered 0, 1, 2, ... ms)
   std::vector<ContourRepair> repairs;  //!< contour flaws fixed on reading (InputOptions::strict = false)
+  double pixel_mm = 0.0;  //!< in-plane pixel size of the images the contours were traced on (mm); 0: none (exact
+                          //!< contours, or contours fitted to a label mask's edge)
+  double smoothing_tolerance_mm = 0.0;  //!< how far the contours were allowed to move when smoothed (0: not smoothed)
+  std::string smoothing_source;         //!< where that tolerance came from, in words
+  std::vector<ContourSmoothing> smoothing;  //!< what the smoothing did to each contour (contour_smoothing.h)
 };
 
 }  // namespace c4d

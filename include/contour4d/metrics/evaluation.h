@@ -13,6 +13,7 @@
 #include "contour4d/metrics/normal_deviation.h"
 #include "contour4d/metrics/conformity.h"
 #include "contour4d/metrics/correspondence.h"
+#include "contour4d/metrics/crease.h"
 #include "contour4d/metrics/distance.h"
 #include "contour4d/metrics/quality.h"
 #include "contour4d/metrics/topology.h"
@@ -37,6 +38,7 @@ struct FrameEvaluation {
   AngleQuality quality;                            //!< Tables 3 and 4
   double volume = 0.0;                             //!< signed volume of the mesh (mm³)
   std::optional<DistanceStats> conformity;         //!< contours → mesh (mm), when contours are given
+  std::optional<CreaseAngles> creases;             //!< angles on the contour lines and between, when contours are given
   std::optional<DiscVolume> simpson;               //!< disc volume of the frame's contours, when given
   std::optional<SurfaceComparison> accuracy;       //!< mesh ↔ truth (mm), when a truth is given
   std::optional<DistanceStats> contours_to_truth;  //!< contours → truth (mm): Table 5's reference column

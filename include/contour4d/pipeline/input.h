@@ -24,6 +24,9 @@ struct InputOptions {
   double frame_ms = 0.0;                   //!< time between frames (ms) for inputs without times of their own
                                            //!< (GPFile, label images); 0: not given
   double cycle_ms = 0.0;                   //!< the same as a cycle length: frame f at f × cycle_ms / frames
+  double contour_tolerance_mm = -1.0;      //!< how far smoothing may move a contour (mm): negative: half the pixel
+                                           //!< size of the images they were traced on (GPFile, Sunnybrook; inputs
+                                           //!< without one are exact); 0: exact, not smoothed (--exact-contours)
   bool strict = false;                     //!< refuse flawed contours (exit codes 15, 16, 19) instead of repairing
                                            //!< them (contour_repair.h; contour JSON and GPFile folders)
 };

@@ -57,8 +57,7 @@ struct CapFrame {
 };
 
 //! Volume (mm³) between a cap's plane and its triangles (exact for a closed rim on the plane: the
-//! sum of each triangle's signed projected area times its mean height, heights clipped to
-//! [0, height]).
+//! sum of each triangle's signed projected area times its mean height, heights below the plane counted as 0).
 double cap_volume(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame);
 
 //! The volume a cap over an end contour of area `area` should hold when the section area changes
@@ -69,10 +68,11 @@ double cap_volume(const std::vector<Vec3>& positions, const std::vector<Triangle
 //! holds already.
 double extrapolated_cap_volume(double area, double neighbour_area, double spacing, double height, double max_fill);
 
-//! Lifts a faired cap towards `target` volume without moving its rim or widening it: every height
-//! u ∈ [0, height] becomes height·(1 − (1 − u/height)^e), e ≥ 1 found by bisection (e = 1: no
-//! change; larger e: flatter top, steeper rim). Vertices at height 0 (the rim) stay. Returns the
-//! exponent used (1 when the cap already holds `target`; capped at 64).
+//! Lifts a faired cap to `target` volume without moving its rim or widening it: every height u ≥ 0
+//! becomes u + c·u²/height, c ≥ 0 solved in closed form (the volume is linear in c). The lift's slope
+//! is 1 at the rim, so the cap leaves the end contour with the slope the fairing gave it (the wall's);
+//! the extra volume goes to its middle, which rises towards where the sections' trend puts the end.
+//! Vertices at height 0 (the rim) stay. Returns c (0 when the cap already holds `target`).
 double fill_cap(std::vector<Vec3>& positions, const std::vector<Triangle>& triangles, const CapFrame& frame,
                 double target);
 
@@ -98,9 +98,10 @@ double end_band_volume(const std::vector<Vec3>& positions, const EndBand& band, 
 double hermite_band_volume(double a0, double a1, double m0, double m1, double h);
 
 //! Widens the wall's free vertices about the axis between the two centroids, by the factor
-//! 1 + α φ(t), φ(t) = 27/4 t² (1 − t) (0 with zero slope at the neighbouring slice, 0 at the end
-//! contour, largest at t = 2/3), t the height from the neighbouring plane to the end plane; α ∈
-//! [0, 0.5] by bisection so that the wall encloses `target` (never narrowed; at most 1.5× wider).
+//! 1 + α φ(t), φ(t) = 16 t² (1 − t)² (0 with zero slope at the neighbouring slice and at the end contour,
+//! so the wall keeps its slope across both; largest half-way), t the height from the neighbouring plane to
+//! the end plane; α ∈ [0, 0.5] by bisection so that the wall encloses `target` (never narrowed; at most
+//! 1.5× wider).
 //! Returns α.
 double fill_end_band(std::vector<Vec3>& positions, const EndBand& band, double target, double orientation = 1.0);
 

@@ -1,0 +1,87 @@
+// Crease angles along the contours (crease.h): the check that a surface built through contours is as smooth on
+// them as between them (Lim et al. 2014 smooth the surface so that "the contour lines" do not show; here it is
+// measured, per class of edge, as the 95th percentile of the angle between the two triangles' normals).
+#include "contour4d/metrics/crease.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+namespace c4d {
+namespace {
+
+// The plane each vertex lies in (index into `offsets`), or -1.
+std::vector<int> plane_of_vertices(const TriangleMesh& mesh, Vec3 normal, const std::vector<double>& offsets,
+                                   double tolerance) {
+  std::vector<int> plane(mesh.positions.size(), -1);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const double h = dot(mesh.positions[v], normal);
+    const auto it = std::lower_bound(offsets.begin(), offsets.end(), h - tolerance);
+    if (it != offsets.end() && *it <= h + tolerance) plane[v] = static_cast<int>(it - offsets.begin());
+  }
+  return plane;
+}
+
+Vec3 facet_normal(const TriangleMesh& m, const Triangle& t) {
+  return normalized(cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]));
+}
+
+double p95(std::vector<double>& a) {
+  if (a.empty()) return 0.0;
+  const std::size_t k = static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(a.size()))) - 1;
+  std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k), a.end());
+  return a[k];
+}
+
+}  // namespace
+
+CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const Frame& frame, double tolerance_mm) {
+  std::vector<double> offsets;
+  for (const Slice& s : frame.slices) offsets.push_back(s.offset);
+  std::sort(offsets.begin(), offsets.end());
+  const std::vector<int> plane = plane_of_vertices(mesh, seq.normal, offsets, tolerance_mm);
+  const int last = static_cast<int>(offsets.size()) - 1;
+
+  // Edges as (lo, hi, triangle), sorted: a run of two is an interior edge.
+  std::vector<std::array<std::uint32_t, 3>> edges;
+  edges.reserve(3 * mesh.triangles.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<double> on, ends, between;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
+    if (j - i == 2) {
+      const double c = std::clamp(
+          dot(facet_normal(mesh, mesh.triangles[edges[i][2]]), facet_normal(mesh, mesh.triangles[edges[i + 1][2]])),
+          -1.0, 1.0);
+      const double angle = std::acos(c) * 180.0 / std::numbers::pi;
+      const int pa = plane[edges[i][0]], pb = plane[edges[i][1]];
+      if (pa >= 0 && pa == pb) {
+        on.push_back(angle);
+        if (pa == 0 || pa == last) ends.push_back(angle);
+      } else if (pa < 0 && pb < 0) {
+        between.push_back(angle);
+      }
+    }
+    i = j;
+  }
+  CreaseAngles r;
+  r.on_contours = on.size();
+  r.on_ends = ends.size();
+  r.between = between.size();
+  r.on_contours_p95 = p95(on);
+  r.on_ends_p95 = p95(ends);
+  r.between_p95 = p95(between);
+  return r;
+}
+
+}  // namespace c4d
