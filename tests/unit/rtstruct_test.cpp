@@ -49,17 +49,30 @@ Shell sh(const std::string& cmd) {
 
 Shell cli(const std::string& args) { return sh(std::string(C4D_CLI) + " " + args); }
 
-// The round-trip files, written once for the whole suite: OUT/rtstruct.dcm and OUT/truth.json.
+// A folder of this process's own, removed at exit.
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("c4d_rtstruct_test_" + std::to_string(getpid()));
+  TempDir() {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+// The round-trip files, written once per test process: OUT/rtstruct.dcm and OUT/truth.json.
 const fs::path& roundtrip_dir() {
-  static const fs::path dir = [] {
-    const fs::path d = fs::temp_directory_path() / ("c4d_rtstruct_test_" + std::to_string(getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    const Shell r = sh(std::string(C4D_PYTHON) + " " + C4D_TEST_SCRIPTS + "/make_rtstruct.py roundtrip " + d.string());
+  static const TempDir dir;
+  static const bool written = [] {
+    const Shell r =
+        sh(std::string(C4D_PYTHON) + " " + C4D_TEST_SCRIPTS + "/make_rtstruct.py roundtrip " + dir.path.string());
     EXPECT_EQ(r.code, 0) << "make_rtstruct.py (needs python3-pydicom): " << r.out;
-    return d;
+    return r.code == 0;
   }();
-  return dir;
+  (void)written;
+  return dir.path;
 }
 
 Json truth() {
