@@ -23,6 +23,9 @@ endif()
 # ITK: medical image I/O (NIfTI, NRRD, MetaImage, DICOM via GDCM) for label masks and DICOM geometry.
 c4d_require(ITK libinsighttoolkit5-dev COMPONENTS ITKCommon ITKIOImageBase ITKIONIFTI ITKIONRRD ITKIOMeta ITKIOGDCM ITKGDCM)
 
+# DICOM RT structure sets: DCMTK's dcmrt (and dcmdata, which parses the file).
+c4d_require(DCMTK libdcmtk-dev CONFIG)
+
 # glTF export: tinygltf and meshoptimizer.
 c4d_require(TinyGLTF libtinygltf-dev)
 c4d_require(meshoptimizer libmeshoptimizer-dev)

@@ -398,13 +398,13 @@ PYBIND11_MODULE(contour4d, m) {
       "Lengths in mm, times in ms, coordinates in the input's patient space (LPS unless space='ras').";
   m.attr("__version__") = "0.1.0";
   register_exceptions(m);
-  m.def(
-      "read", &read_to_dict, "input"_a,
-      "Reads any supported input (contour JSON, GPFile folder, Sunnybrook folder, label images; or a list of contour\n"
-      "dicts) into {'contours': [{'frame', 'slice', 'label', 'offset_mm', 'time_ms', 'points': (n, 3)}], 'timing',\n"
-      "'repairs', 'notes', 'format', 'space', 'stack_normal', 'frames'}.\n"
-      "Options as `contour4d reconstruct`'s: type, label ('all': every structure), labels, slice_axis, space,\n"
-      "frame_ms, cycle_ms, exact_contours, contour_tolerance, strict.");
+  m.def("read", &read_to_dict, "input"_a,
+        "Reads any supported input (contour JSON, GPFile folder, Sunnybrook folder, RT structure set, label images;\n"
+        "or a list of contour dicts) into {'contours': [{'frame', 'slice', 'label', 'offset_mm', 'time_ms',\n"
+        "'points': (n, 3)}], 'timing',\n"
+        "'repairs', 'notes', 'format', 'space', 'stack_normal', 'frames'}.\n"
+        "Options as `contour4d reconstruct`'s: type, label ('all': every structure), labels, slice_axis, space,\n"
+        "frame_ms, cycle_ms, exact_contours, contour_tolerance, strict.");
   m.def("reconstruct", &reconstruct, "input"_a, "output"_a = py::none(), "keep_failed"_a = py::none(),
         "format"_a = "vtp",
         "Reconstructs INPUT (a path, a list of contour dicts, or read()'s dict) as `contour4d reconstruct` does.\n"

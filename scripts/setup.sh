@@ -7,13 +7,13 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config clang clang-format libclang-rt-14-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev
-  libinsighttoolkit5-dev libgdcm-tools
+  libinsighttoolkit5-dev libgdcm-tools libdcmtk-dev
   libtinygltf-dev libmeshoptimizer-dev libzstd-dev libstb-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev
   libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libegl-dev libgl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri
-  python3 python3-numpy python3-pytest python3-meshio pybind11-dev snakemake chromium python3-vtk9 python3-nibabel python3-skimage python3-matplotlib python3-pil
+  python3 python3-numpy python3-pytest python3-meshio pybind11-dev snakemake chromium python3-vtk9 python3-nibabel python3-skimage python3-matplotlib python3-pil python3-pydicom
   libegl-mesa0 mesa-utils
 )
 

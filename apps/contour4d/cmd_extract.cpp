@@ -89,10 +89,12 @@ void add_extract_command(CLI::App& root, std::vector<Command>& commands) {
   auto args = std::make_shared<ExtractArgs>();
   CLI::App* app = root.add_subcommand(
       "extract",
-      "Read contours (contour4d JSON, a biv-me GPFile folder, a Sunnybrook patient folder, or label images:\n"
+      "Read contours (contour4d JSON, a biv-me GPFile folder, a Sunnybrook patient folder, a DICOM RT structure set,\n"
+      "or label images:\n"
       "NIfTI/NRRD/MetaImage masks, contours extracted by marching squares), validate them as a stack of\n"
       "parallel slices, and write them as contour4d JSON (mm, patient space; docs/formats.md, docs/images.md).");
-  app->add_option("input", args->input, "contour JSON, GPFile folder, Sunnybrook folder, or label image(s)")
+  app->add_option("input", args->input,
+                  "contour JSON, GPFile folder, Sunnybrook folder, RT structure set (.dcm), or label image(s)")
       ->required();
   app->add_option("-o,--output", args->out, "contour JSON file to write")->required();
   add_input_options(app, args->in);
@@ -103,8 +105,10 @@ void add_extract_command(CLI::App& root, std::vector<Command>& commands) {
       "  contour4d extract patient1 --type SAX_LV_ENDOCARDIAL --type SAX_LV_EPICARDIAL -o lv2.json\n"
       "  contour4d extract lv2.json --label lv-epi -o epi.json\n"
       "  contour4d extract SC-HF-I-1 --label all -o sb.json      # a Sunnybrook folder: endo- and epicardium\n"
+      "  contour4d extract RS.dcm -o rois.json                   # an RT structure set: every ROI, labelled by name\n"
       "  contour4d extract 'patient001_frame*_gt.nii.gz' --labels acdc --label lv -o lv.json\n"
-      "Exit codes name the problem (10 file not found, 12 parse error, 15 degenerate contour, ...; docs/formats.md).");
+      "Exit codes name the problem (10 file not found, 12 parse error, 15 degenerate contour, 27 no referenced frame\n"
+      "of reference, 28 an empty ROI, ...; docs/cli.md).");
   commands.push_back({app, [args] { return run_extract(*args); }});
 }
 

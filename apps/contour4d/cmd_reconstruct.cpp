@@ -162,19 +162,25 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
       "mm)\n"
       "  contour4d reconstruct contours.json --cap open -o out/cfd        # open ends for CFD inlets\n"
       "  contour4d reconstruct SC-HF-I-1 --label all -o out/sb   # a Sunnybrook folder: endo, epi and the wall\n"
+      "  contour4d reconstruct RS.dcm --label all -o out/rois      # an RT structure set: each ROI into "
+      "out/rois/<label>/\n"
+      "  contour4d reconstruct RS.dcm --label \"Lung L\" -o out/lung  # one ROI, by its name, label (lung-l) or "
+      "number\n"
       "  contour4d reconstruct seg.nii.gz --labels acdc --label lv -o out/lv  # label masks (nnU-Net, Slicer)\n"
       "  contour4d reconstruct seg.nii.gz --labels acdc --label myo --method carry --cycle-ms 800 -o out/myo\n"
       "                                      # a myocardial wall, every frame on its own; frames 800/N ms apart\n"
       "  contour4d reconstruct contours.json --strict -o out/lv      # refuse flawed contours instead of repairing "
       "them\n"
-      "INPUT is a contour JSON file, a biv-me GPFile folder, a Sunnybrook folder or label image(s). Outputs: "
+      "INPUT is a contour JSON file, a biv-me GPFile folder, a Sunnybrook folder, a DICOM RT structure set (a .dcm\n"
+      "file or a folder holding one) or label image(s). Outputs: "
       "OUTDIR/mesh.pvd (open in ParaView),\n"
       "OUTDIR/frames/frame_NNN.vtp (.obj with --format vtp,obj), OUTDIR/report.json (summary first: volume curve, "
       "ED/ES\n"
       "frames, EDV/ESV/EF). Coordinates in mm, in the input's patient space (LPS for DICOM-derived inputs).\n"
       "Every frame is checked before anything is written; a frame that fails exits with code 26, naming it.");
   // The options a user needs first; the rest under "Advanced" (baselines of the papers, tuning, debugging).
-  app->add_option("INPUT", args->input, "contour JSON file, GPFile folder, Sunnybrook folder or label image(s)")
+  app->add_option("INPUT", args->input,
+                  "contour JSON file, GPFile folder, Sunnybrook folder, RT structure set (.dcm) or label image(s)")
       ->required();
   app->add_option("-o,--output", args->output, "output folder (replaced atomically when complete)")->required();
   app->add_option("--edge", args->run.edge, "target edge length in mm")

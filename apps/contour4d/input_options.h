@@ -17,14 +17,16 @@ inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::s
   if (labels)
     app->add_option(
         "--label", *labels,
-        "structure: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name (lv); "
+        "structure: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name (lv), "
+        "for an RT structure set an ROI's label (lung-l), name or number; "
         "repeatable, or all: every structure (and lv-wall, the myocardium, from lv-endo inside lv-epi), "
         "each into OUTDIR/<label>/");
   else
     app->add_option(
         "--label", o.label,
         "structure to keep: a contour label (lv-endo, lv-epi), or for label images a number (3) or a preset name "
-        "(lv); all: every structure (Sunnybrook folders give lv-endo unless asked)");
+        "(lv), for an RT structure set an ROI's label (lung-l), name or number; all: every structure (Sunnybrook "
+        "folders give lv-endo unless asked)");
   app->add_option("--labels", o.label_preset,
                   "label-image preset naming the labels: acdc (RV=1, MYO=2, LV=3) or mnms (LV=1, MYO=2, RV=3)")
       ->check(CLI::IsMember({"acdc", "mnms"}));
@@ -32,7 +34,8 @@ inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::s
                   "label images: voxel axis 0, 1 or 2 along which slices are stacked "
                   "(default: the axis with the largest spacing)")
       ->check(CLI::Range(0, 2));
-  app->add_option("--space", o.space, "output space of image/DICOM inputs: lps (DICOM patient space) or ras")
+  app->add_option("--space", o.space,
+                  "output space of image/DICOM inputs (RT structure sets too): lps (DICOM patient space) or ras")
       ->capture_default_str()
       ->transform(CLI::IsMember({"lps", "ras", "LPS", "RAS"}));
   app->add_option("--frame-ms", o.frame_ms,

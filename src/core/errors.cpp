@@ -14,7 +14,11 @@ std::string Location::format() const {
   if (!file.empty()) {
     os << file;
     first = true;
-    if (line >= 0 || frame >= 0 || slice >= 0 || contour >= 0) os << ": ";
+    if (!part.empty() || line >= 0 || frame >= 0 || slice >= 0 || contour >= 0) os << ": ";
+  }
+  if (!part.empty()) {
+    sep();
+    os << part;
   }
   if (line >= 0) {
     sep();
@@ -46,6 +50,6 @@ std::string compose(const Location& where, const std::string& what, const std::s
 }  // namespace
 
 Error::Error(ErrorCode code, const Location& where, const std::string& what, const std::string& hint)
-    : std::runtime_error(compose(where, what, hint)), code_(code), where_(where), hint_(hint) {}
+    : std::runtime_error(compose(where, what, hint)), code_(code), where_(where), detail_(what), hint_(hint) {}
 
 }  // namespace c4d

@@ -12,6 +12,7 @@
 #include "contour4d/io/contours_json.h"
 #include "contour4d/io/gpfile.h"
 #include "contour4d/io/images.h"
+#include "contour4d/io/rtstruct.h"
 #include "contour4d/io/sunnybrook.h"
 #include "contour4d/extract/mask_contours.h"
 
@@ -24,7 +25,8 @@ namespace fs = std::filesystem;
 constexpr const char* kSupported =
     "supported inputs: a contour4d JSON file (*.json, see docs/formats.md); a biv-me GPFile folder "
     "(GPFile_000.txt ... plus SliceInfoFile.txt) or its parent holding a \"guidepoints\" folder; a Sunnybrook-style "
-    "patient folder (i-contours/, o-contours/, DICOM images); label images (.nii, .nii.gz, .nrrd, .mha, .mhd: one 4D "
+    "patient folder (i-contours/, o-contours/, DICOM images); a DICOM RT structure set (RTSTRUCT: a .dcm file, or "
+    "a folder holding one); label images (.nii, .nii.gz, .nrrd, .mha, .mhd: one 4D "
     "file, one file per frame, a folder of them or a pattern like 'patient001_frame*_gt.nii.gz')";
 
 bool has_gpfiles(const fs::path& dir) {
@@ -55,6 +57,53 @@ std::string lower_extension(const fs::path& p) {
   std::string e = p.extension().string();
   for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return e;
+}
+
+bool is_dicom_input(const fs::path& file) { return lower_extension(file) == ".dcm" || is_dicom_file(file); }
+
+// The RT structure sets among a folder's DICOM files (headers only: pixel data stays on disk).
+std::vector<fs::path> rtstruct_files(const fs::path& dir) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (!e.is_regular_file(ec) || !is_dicom_input(e.path())) continue;
+    try {
+      if (dicom_kind(e.path()).rtstruct) out.push_back(e.path());
+    } catch (const Error&) {
+      // an unreadable file beside the images is not the structure set
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// An RT structure set: the ROI (--label) is chosen on reading, by its label, name or number.
+InputResult read_rtstruct_input(const fs::path& file, const InputOptions& options, const std::string& space) {
+  if (!options.contour_types.empty())
+    throw InvalidInput(ErrorCode::Usage, Location{file.string()}, "contour types (--type) apply to GPFile folders only",
+                       "use --label to choose an ROI of an RT structure set");
+  RtStructOptions ro;
+  ro.label = options.label;
+  ro.space = space;
+  ro.stack = options.stack;
+  ro.repair = !options.strict;
+  return read_rtstruct(file, ro);
+}
+
+// A folder of DICOM files: the one RT structure set among them, else what is wrong.
+fs::path rtstruct_in_folder(const fs::path& dir, const Location& where) {
+  const std::vector<fs::path> found = rtstruct_files(dir);
+  if (found.size() == 1) return found.front();
+  if (found.size() > 1)
+    throw IoError(ErrorCode::Format, where,
+                  fmt::format("folder holds {} RT structure sets ({}, {}, ...)", found.size(),
+                              found[0].filename().string(), found[1].filename().string()),
+                  "give the one to read");
+  throw IoError(ErrorCode::Format, where,
+                "folder holds DICOM images but no contours: contour4d reads contours drawn on them (an RT structure "
+                "set, a Sunnybrook-style folder with i-contours/ and o-contours/ beside the images) or label images, "
+                "not the images alone",
+                kSupported);
 }
 
 }  // namespace
@@ -105,11 +154,7 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
     fs::path dir = input;
     if (!has_gpfiles(dir) && has_gpfiles(dir / "guidepoints")) dir = dir / "guidepoints";
     if (!has_gpfiles(dir) && has_dicom_files(input))
-      throw IoError(
-          ErrorCode::Format, where,
-          "folder holds DICOM images but no contours: contour4d reads contours drawn on them (a Sunnybrook-style "
-          "folder with i-contours/ and o-contours/ beside the images) or label images, not the images alone",
-          kSupported);
+      return read_rtstruct_input(rtstruct_in_folder(input, where), options, space);  // the label chosen on reading
     if (!has_gpfiles(dir)) throw IoError(ErrorCode::Format, where, "folder holds no GPFile_*.txt files", kSupported);
     GpFileOptions gp;
     gp.contour_types = options.contour_types;
@@ -121,6 +166,8 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
     result.format = "gpfile";
     result.notes = std::move(r.notes);
     result.pixel_mm = mean_pixel_mm(r);
+  } else if (fs::is_regular_file(input, ec) && is_dicom_input(input)) {
+    return read_rtstruct_input(input, options, space);  // the label was chosen on reading
   } else if (lower_extension(input) == ".json") {
     if (!options.contour_types.empty())
       throw InvalidInput(ErrorCode::Usage, where, "contour types (--type) apply to GPFile folders only",

@@ -96,8 +96,9 @@ Json checks_json(const ResultCheck& check) {
 // The library's options from the user's.
 Reconstruct4DOptions library_options(const ReconstructRunOptions& a, const std::string& format) {
   Reconstruct4DOptions opt;
-  // Label images name contours by the label's name (or number), which extraction already selected.
-  opt.surface.label = format == "label-image" ? std::string() : a.label;
+  // Label images name contours by the label's name (or number), which extraction already selected; an RT
+  // structure set's ROI (by label, name or number) was chosen on reading.
+  opt.surface.label = format == "label-image" || format == "dicom-rtstruct" ? std::string() : a.label;
   opt.surface.edge = a.edge;
   // The paper's tiling (delaunay) tiles every band, so it goes with the remeshed bands, not rows.
   opt.surface.rows = a.tiling != "delaunay";

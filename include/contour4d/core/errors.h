@@ -32,6 +32,10 @@ enum class ErrorCode : int {
   BadMesh = 25,            //!< a mesh file that cannot be read or is inconsistent
   InvalidResult = 26,      //!< a reconstructed frame failed its checks before writing (not closed or manifold,
                            //!< inward, self-intersecting, volume far from Simpson's discs): nothing is written
+  MissingGeometry = 27,    //!< contours without the geometry they are drawn in (an RT structure set whose ROI names
+                           //!< no frame of reference, or one the file does not reference)
+  EmptyStructure = 28,     //!< a structure without contours (an RT structure set's ROI with no closed planar
+                           //!< contour, or a structure set without ROIs)
 };
 
 //! Where in an input a problem was found; unset fields are omitted from messages.
@@ -40,8 +44,9 @@ struct Location {
   int line = -1;               //!< 1-based line
   int frame = -1;              //!< 0-based frame index
   int slice = -1;              //!< slice id
-  int contour = -1;            //!< 0-based contour index within the frame
-  std::string format() const;  //!< "file: line 3, frame 0, slice 2, contour 1"
+  int contour = -1;            //!< 0-based contour index within the frame (within `part` when that is set)
+  std::string part{};          //!< a named part of the file, e.g. `ROI 2 "Lung L"` of an RT structure set
+  std::string format() const;  //!< "file: ROI 2 "Lung L", line 3, frame 0, slice 2, contour 1"
 };
 
 //! Base of all contour4d exceptions: a message with context and an exit code.
@@ -50,11 +55,13 @@ class Error : public std::runtime_error {
   Error(ErrorCode code, const Location& where, const std::string& what, const std::string& hint = {});
   ErrorCode code() const { return code_; }
   const Location& where() const { return where_; }
+  const std::string& detail() const { return detail_; }  //!< the `what` given, without place and hint
   const std::string& hint() const { return hint_; }
 
  private:
   ErrorCode code_;
   Location where_;
+  std::string detail_;
   std::string hint_;
 };
 

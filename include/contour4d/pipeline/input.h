@@ -15,8 +15,9 @@ namespace c4d {
 struct InputOptions {
   std::vector<std::string> contour_types;  //!< GPFile contour types to keep; empty = SAX_LV_ENDOCARDIAL
   std::string label;                       //!< keep only this label; for label images a number ("3") or a preset
-                                           //!< name ("lv"). Empty: every label, except that a Sunnybrook folder
-                                           //!< gives its endocardium (lv-endo); "all": every label of every format
+                                           //!< name ("lv"), for an RT structure set an ROI's label, name or number.
+                                           //!< Empty: every label, except that a Sunnybrook folder gives its
+                                           //!< endocardium (lv-endo); "all": every label of every format
   std::string label_preset;                //!< label images: "acdc", "mnms" or "" (labels named by number)
   int slice_axis = -1;                     //!< label images: voxel axis of the slices; -1: largest spacing
   std::string space = "LPS";               //!< output coordinates of DICOM-derived inputs: "LPS" or "RAS"
@@ -32,8 +33,10 @@ struct InputOptions {
 };
 
 //! Reads a .json contour file, a GPFile folder (a folder with GPFile_*.txt, or its parent), a
-//! Sunnybrook-style patient folder (i-contours/, o-contours/, DICOM images), or label images
-//! (NIfTI, NRRD, MetaImage: one 4D file, one file per frame, a folder or a name pattern).
+//! Sunnybrook-style patient folder (i-contours/, o-contours/, DICOM images), a DICOM RT structure set
+//! (a .dcm file or any file marked DICM, or a folder of DICOM files holding exactly one; any other DICOM
+//! file fails with Format, saying what it is), or label images (NIfTI, NRRD, MetaImage: one 4D file, one
+//! file per frame, a folder or a name pattern).
 //! \throw IoError / InvalidInput with context.
 InputResult read_contours(const std::filesystem::path& input, const InputOptions& options = {});
 
