@@ -47,8 +47,10 @@ CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const 
   // Edges as (lo, hi, triangle), sorted: a run of two is an interior edge.
   std::vector<std::array<std::uint32_t, 3>> edges;
   edges.reserve(3 * mesh.triangles.size());
+  const std::size_t nv = mesh.positions.size();
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv) continue;  // an invalid triangle (topology.h reports it)
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = t[k], b = t[(k + 1) % 3];
       edges.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f)});
@@ -60,10 +62,13 @@ CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const 
     std::size_t j = i;
     while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
     if (j - i == 2) {
-      const double c = std::clamp(
-          dot(facet_normal(mesh, mesh.triangles[edges[i][2]]), facet_normal(mesh, mesh.triangles[edges[i + 1][2]])),
-          -1.0, 1.0);
-      const double angle = std::acos(c) * 180.0 / std::numbers::pi;
+      const double c =
+          dot(facet_normal(mesh, mesh.triangles[edges[i][2]]), facet_normal(mesh, mesh.triangles[edges[i + 1][2]]));
+      if (!std::isfinite(c)) {  // a zero-area triangle has no normal
+        i = j;
+        continue;
+      }
+      const double angle = std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
       const int pa = plane[edges[i][0]], pb = plane[edges[i][1]];
       if (pa >= 0 && pa == pb) {
         on.push_back(angle);

@@ -27,7 +27,8 @@ struct CreaseAngles {
 };
 
 //! The crease angles of `mesh` against the slice planes of `frame` (planes dot(p, seq.normal) = offset; a vertex
-//! lies in a plane within `tolerance_mm`). Edges that are not shared by exactly two triangles are skipped.
+//! lies in a plane within `tolerance_mm`). Edges that are not shared by exactly two triangles, and triangles with an
+//! invalid index or no area, are skipped.
 CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const Frame& frame,
                            double tolerance_mm = 1e-3);
 
