@@ -9,6 +9,8 @@
 #include <numbers>
 #include <utility>
 
+#include "metrics_internal.h"
+
 namespace c4d {
 namespace {
 
@@ -30,9 +32,8 @@ Vec3 facet_normal(const TriangleMesh& m, const Triangle& t) {
 
 double p95(std::vector<double>& a) {
   if (a.empty()) return 0.0;
-  const std::size_t k = static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(a.size()))) - 1;
-  std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k), a.end());
-  return a[k];
+  std::sort(a.begin(), a.end());
+  return metrics_internal::percentile(a, 0.95);
 }
 
 }  // namespace
@@ -62,13 +63,12 @@ CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const 
     std::size_t j = i;
     while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
     if (j - i == 2) {
-      const double c =
-          dot(facet_normal(mesh, mesh.triangles[edges[i][2]]), facet_normal(mesh, mesh.triangles[edges[i + 1][2]]));
-      if (!std::isfinite(c)) {  // a zero-area triangle has no normal
+      const double angle = metrics_internal::angle_deg(facet_normal(mesh, mesh.triangles[edges[i][2]]),
+                                                       facet_normal(mesh, mesh.triangles[edges[i + 1][2]]));
+      if (!std::isfinite(angle)) {  // a zero-area triangle has no normal
         i = j;
         continue;
       }
-      const double angle = std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
       const int pa = plane[edges[i][0]], pb = plane[edges[i][1]];
       if (pa >= 0 && pa == pb) {
         on.push_back(angle);

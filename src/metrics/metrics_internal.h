@@ -2,6 +2,9 @@
 // Private to src/metrics: pieces shared by the public measures and evaluate(), so that evaluate
 // builds each frame's AABB trees and sample sets once.
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "contour4d/core/stack.h"
@@ -28,6 +31,15 @@ DirectedSamples measure_samples(const std::vector<SurfaceSample>& samples, const
 //! Combines both directions into whole-surface and slab statistics.
 SurfaceComparison combine(const DirectedSamples& mesh_to_truth, const DirectedSamples& truth_to_mesh,
                           const SurfaceDistanceOptions& options);
+
+//! The angle between unit vectors a and b (degrees), robust near 0 and 180.
+inline double angle_deg(Vec3 a, Vec3 b) { return std::atan2(norm(cross(a, b)), dot(a, b)) * 180.0 / std::numbers::pi; }
+
+//! The value at fraction q of the sorted values (nearest rank). \pre sorted is not empty.
+inline double percentile(const std::vector<double>& sorted, double q) {
+  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
+  return sorted[std::min(sorted.size() - 1, k > 0 ? k - 1 : 0)];
+}
 
 //! Arc-length samples of every contour of a frame.
 std::vector<Vec3> contour_samples(const Frame& frame, double step);

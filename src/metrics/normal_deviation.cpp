@@ -12,19 +12,14 @@
 #include <tbb/parallel_for.h>
 
 #include "contour4d/core/errors.h"
+#include "metrics_internal.h"
 
 namespace c4d {
 
 namespace {
 
-// The angle between unit vectors a and b (degrees), robust near 0 and 180.
-double angle_deg(Vec3 a, Vec3 b) { return std::atan2(norm(cross(a, b)), dot(a, b)) * 180.0 / std::numbers::pi; }
-
-// The value at fraction q of the sorted values (nearest rank).
-double percentile(const std::vector<double>& sorted, double q) {
-  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
-  return sorted[std::min(sorted.size() - 1, k > 0 ? k - 1 : 0)];
-}
+using metrics_internal::angle_deg;
+using metrics_internal::percentile;
 
 }  // namespace
 
