@@ -32,6 +32,11 @@ enum class ErrorCode : int {
   BadMesh = 25,            //!< a mesh file that cannot be read or is inconsistent
   InvalidResult = 26,      //!< a reconstructed frame failed its checks before writing (not closed or manifold,
                            //!< inward, self-intersecting, volume far from Simpson's discs): nothing is written
+  TooFewFrames = 27,       //!< `export`: the output folder holds one frame (a --frame run), not a cycle
+  OpenSurface = 28,        //!< `export`: the surface has holes (reconstructed with --cap open); it opens ends itself
+  InvertedElement = 29,    //!< `export`: the moving cavity mesh or a flattened end folds at some time: nothing written
+  UnknownFrameTimes = 30,  //!< `export`: the frame times are unknown (GPFiles, images): give --frame-ms or --cycle-ms
+  VolumeMeshFailed = 31,   //!< `export`: the cavity could not be tetrahedralised with its surface kept
 };
 
 //! Where in an input a problem was found; unset fields are omitted from messages.
