@@ -128,7 +128,8 @@ std::string report_json(const ExportInput& in, const ExportRun& run, const Expor
                     {"border_loops", e.loops},
                     {"opened", open},
                     {"face", open ? h.surface.names[k + 1] : e.name},
-                    {"border_moved_to_plane_mm", open ? h.surface.ring_moved_mm[k] : 0.0}});
+                    {"border_moved_to_plane_mm", open ? h.surface.ring_moved_mm[k] : 0.0},
+                    {"frames_not_flat", open ? Json(h.surface.not_flat_frames[k]) : Json::array()}});
   }
   Json steps = Json::array();
   for (std::size_t i = 0; i < h.steps.times_s.size(); ++i)

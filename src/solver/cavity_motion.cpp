@@ -94,14 +94,40 @@ std::vector<std::vector<Vec3>> solve(const System& s, const std::vector<std::vec
   return out;
 }
 
-// The inner displacement (from frame 0) of every key frame: one system on frame 0's mesh, all frames at once.
+// The inner displacement (from frame 0) of every key frame. Harmonic: one system on frame 0's mesh, all frames
+// solved at once. Stiffened: an updated-Lagrangian pseudo-solid, frame after frame, each frame's wall increment
+// extended on the mesh as it then is, the stiffness re-assembled there (tets squeezed so far grow stiffer); run
+// from frame 0 forwards to the middle of the cycle and backwards over the wrap to it, so that both chains start
+// from frame 0's mesh and only meet once.
 std::vector<std::vector<Vec3>> extend(const TetMesh& mesh, const MeshSequence& surface, Extension extension) {
   const std::size_t nb = mesh.surface_nodes, ni = mesh.nodes.size() - nb, frames = surface.positions.size();
   if (ni == 0) return std::vector<std::vector<Vec3>>(frames);
-  std::vector<std::vector<Vec3>> walls(frames, std::vector<Vec3>(nb));
-  for (std::size_t f = 0; f < frames; ++f)
-    for (std::size_t v = 0; v < nb; ++v) walls[f][v] = surface.positions[f][v] - surface.positions[0][v];
-  return solve(assemble(mesh, mesh.nodes, extension), walls);
+  if (extension == Extension::Harmonic) {
+    std::vector<std::vector<Vec3>> walls(frames, std::vector<Vec3>(nb));
+    for (std::size_t f = 0; f < frames; ++f)
+      for (std::size_t v = 0; v < nb; ++v) walls[f][v] = surface.positions[f][v] - surface.positions[0][v];
+    return solve(assemble(mesh, mesh.nodes, extension), walls);
+  }
+  std::vector<std::vector<Vec3>> out(frames, std::vector<Vec3>(ni));
+  const std::size_t middle = frames / 2;
+  for (int direction : {1, -1}) {
+    std::vector<Vec3> x = mesh.nodes;
+    std::size_t prev = 0;
+    const std::size_t count = direction > 0 ? middle : frames - 1 - middle;
+    for (std::size_t k = 1; k <= count; ++k) {
+      const std::size_t f = direction > 0 ? k : frames - k;
+      std::vector<std::vector<Vec3>> step(1, std::vector<Vec3>(nb));
+      for (std::size_t v = 0; v < nb; ++v) step[0][v] = surface.positions[f][v] - surface.positions[prev][v];
+      const std::vector<Vec3> du = solve(assemble(mesh, x, extension), step)[0];
+      for (std::size_t v = 0; v < nb; ++v) x[v] = surface.positions[f][v];
+      for (std::size_t i = 0; i < ni; ++i) {
+        x[nb + i] = x[nb + i] + du[i];
+        out[f][i] = x[nb + i] - mesh.nodes[nb + i];
+      }
+      prev = f;
+    }
+  }
+  return out;
 }
 
 // Signed distance of node k of tet q to the plane of its opposite face (positive on the tet's side), and the
@@ -234,10 +260,14 @@ CavityMotion cavity_motion(const TetMesh& mesh, const MeshSequence& surface, con
     m.steps = measure_steps(mesh, surface, m, times_s, options.threads, m.repaired_nodes);
     const std::size_t bad = first_inverted_step(m.steps);
     if (bad == m.steps.size()) break;
-    const std::string fault =
-        fmt::format("{} extension: {} tets inverted at t = {} s (step {}), the first tet {} (volume {:.3g} mm³)",
-                    extension == Extension::Harmonic ? "harmonic" : "stiffened", m.steps[bad].inverted, times_s[bad],
-                    bad, m.steps[bad].first_inverted, m.steps[bad].min_volume_mm3);
+    const Tet& worst = mesh.tets[m.steps[bad].first_inverted];
+    const auto on_wall =
+        std::count_if(worst.begin(), worst.end(), [&](std::uint32_t v) { return v < mesh.surface_nodes; });
+    const std::string fault = fmt::format(
+        "{} extension: {} tets inverted at t = {} s (step {}), the first tet {} ({} of its nodes on the wall, volume "
+        "{:.3g} mm³)",
+        extension == Extension::Harmonic ? "harmonic" : "stiffened", m.steps[bad].inverted, times_s[bad], bad,
+        m.steps[bad].first_inverted, on_wall, m.steps[bad].min_volume_mm3);
     if (extension == Extension::Harmonic) {
       m.harmonic_fault = fault;
       continue;

@@ -307,8 +307,13 @@ namespace {
 
 // Flattens one end in every frame of `out` (a copy of the input sequence).
 void flatten_end(MeshSequence& out, const Vec3& normal, const SurfaceEnd& end, const std::string& name,
-                 double& ring_moved, std::vector<double>& offsets) {
+                 double& ring_moved, std::vector<double>& offsets, std::vector<int>& not_flat) {
   const std::size_t nv = out.positions.front().size(), frames = out.positions.size();
+  std::vector<std::uint32_t> part = end.border;  // the end's vertices, to restore a frame whose flat face folds
+  part.insert(part.end(), end.inner.begin(), end.inner.end());
+  std::vector<std::vector<Vec3>> before(frames);
+  for (std::size_t f = 0; f < frames; ++f)
+    for (std::uint32_t v : part) before[f].push_back(out.positions[f][v]);
   std::vector<int> local(nv, -1);
   for (std::size_t i = 0; i < end.inner.size(); ++i) local[end.inner[i]] = static_cast<int>(i);
   std::vector<char> on_border(nv, 0);
@@ -321,11 +326,7 @@ void flatten_end(MeshSequence& out, const Vec3& normal, const SurfaceEnd& end, c
     for (std::uint32_t v : end.border) d += dot(normal, x[v]);
     d /= static_cast<double>(end.border.size());
     offsets.push_back(d);
-    for (std::uint32_t v : end.border) {
-      const double h = dot(normal, x[v]) - d;
-      ring_moved = std::max(ring_moved, std::abs(h));
-      x[v] = x[v] - h * normal;
-    }
+    for (std::uint32_t v : end.border) x[v] = x[v] - (dot(normal, x[v]) - d) * normal;
   }
   const int n = static_cast<int>(end.inner.size());
   if (n > 0) {
@@ -363,18 +364,29 @@ void flatten_end(MeshSequence& out, const Vec3& normal, const SurfaceEnd& end, c
         out.positions[f][end.inner[row]] = p;
       }
   }
-  // A flat face must not fold: every triangle faces out of the cavity, along side · normal.
-  for (std::size_t f = 0; f < frames; ++f)
-    for (std::uint32_t t : end.triangles) {
+  // A flat face must not fold: every triangle faces out of the cavity, along side · normal. Where it would (the
+  // frame-0 border far from one plane in that frame: a base that moved to another slice), the frame keeps the
+  // end as reconstructed, still a face of its own.
+  for (std::size_t f = 0; f < frames; ++f) {
+    const std::vector<Vec3>& x = out.positions[f];
+    const bool folds = std::any_of(end.triangles.begin(), end.triangles.end(), [&](std::uint32_t t) {
       const Triangle& tri = out.triangles[t];
-      const std::vector<Vec3>& x = out.positions[f];
-      if (end.side * dot(cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]), normal) <= 0.0)
-        throw InvalidInput(ErrorCode::InvertedElement, {{}, -1, static_cast<int>(f)},
-                           fmt::format("the flat face of end '{}' folds in frame {} (triangle {}): its border is "
-                                       "too far from convex for a flat face",
-                                       name, f, t),
-                           "keep this end closed (--open without it)");
+      return end.side * dot(cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]), normal) <= 0.0;
+    });
+    if (folds) {
+      for (std::size_t i = 0; i < part.size(); ++i) out.positions[f][part[i]] = before[f][i];
+      not_flat.push_back(static_cast<int>(f));
+      continue;
     }
+    for (std::size_t i = 0; i < end.border.size(); ++i)
+      ring_moved = std::max(ring_moved, norm(out.positions[f][part[i]] - before[f][i]));
+  }
+  if (not_flat.size() == frames)
+    throw InvalidInput(ErrorCode::InvertedElement, {},
+                       fmt::format("the flat face of end '{}' folds in every frame: its border is too far from convex "
+                                   "for a flat face",
+                                   name),
+                       "keep this end closed (--open without it)");
 }
 
 }  // namespace
@@ -398,7 +410,8 @@ FacedSequence open_ends(const MeshSequence& seq, const Vec3& normal, const std::
     r.names.push_back(name);
     for (std::uint32_t t : end.triangles) r.face[t] = static_cast<std::uint8_t>(k + 1);
     double moved = 0.0;
-    flatten_end(r.seq, normal, end, name, moved, r.plane_offset_mm);
+    r.not_flat_frames.emplace_back();
+    flatten_end(r.seq, normal, end, name, moved, r.plane_offset_mm, r.not_flat_frames.back());
     r.ring_moved_mm.push_back(moved);
   }
   return r;
