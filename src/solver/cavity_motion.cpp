@@ -41,13 +41,15 @@ struct System {
 System assemble(const TetMesh& mesh, const std::vector<Vec3>& x, Extension extension) {
   const std::size_t nb = mesh.surface_nodes, ni = mesh.nodes.size() - nb;
   double mean_volume = 0.0;
-  for (const Tet& q : mesh.tets) mean_volume += tet_volume(x[q[0]], x[q[1]], x[q[2]], x[q[3]]);
+  for (const Tet& q : mesh.tets) mean_volume += std::abs(tet_volume(x[q[0]], x[q[1]], x[q[2]], x[q[3]]));
   mean_volume /= static_cast<double>(std::max<std::size_t>(mesh.tets.size(), 1));
   std::vector<Eigen::Triplet<double>> inner, coupling;
   for (const Tet& q : mesh.tets) {
     const Vec3 &a = x[q[0]], &b = x[q[1]], &c = x[q[2]], &d = x[q[3]];
     const Vec3 n[4] = {cross(c - b, d - b), cross(d - a, c - a), cross(b - a, d - a), cross(c - a, b - a)};
-    const double v = tet_volume(a, b, c, d);
+    // |V|: a tet inverted on the way (the stiffened chain runs on moved meshes) still adds a positive
+    // semi-definite element, that of its mirror image, so the system stays definite.
+    const double v = std::max(std::abs(tet_volume(a, b, c, d)), 1e-12 * mean_volume);
     const double k = extension == Extension::Stiffened ? std::pow(mean_volume / v, kStiffening) : 1.0;
     for (int i = 0; i < 4; ++i) {
       if (q[i] < nb) continue;
@@ -256,7 +258,14 @@ CavityMotion cavity_motion(const TetMesh& mesh, const MeshSequence& surface, con
   std::string faults;
   for (Extension extension : {Extension::Harmonic, Extension::Stiffened}) {
     m.extension = extension;
-    m.inner_displacement = extend(mesh, surface, extension);
+    try {
+      m.inner_displacement = extend(mesh, surface, extension);
+    } catch (const SolverError& e) {
+      if (extension == Extension::Harmonic || e.code() != ErrorCode::InvertedElement) throw;
+      throw SolverError(ErrorCode::InvertedElement, {},
+                        "the moving cavity mesh inverts: " + m.harmonic_fault + "; " + e.what(),
+                        "nothing was written; try a finer surface (reconstruct --edge) or fewer opened ends");
+    }
     m.steps = measure_steps(mesh, surface, m, times_s, options.threads, m.repaired_nodes);
     const std::size_t bad = first_inverted_step(m.steps);
     if (bad == m.steps.size()) break;

@@ -6,13 +6,13 @@ usage: check_export_openfoam.py OUTDIR EXPORTDIR [TOL_MM]
 
 On a copy of EXPORTDIR/openfoam written every step: checkMesh passes on the cavity; moveDynamicMesh moves the
 mesh through the whole exported time span (displacementLaplacian, the wall and every opened end driven by
-constant/boundaryData); checkMesh at every written time finds no cell of zero or negative volume; the moved
+constant/boundaryData), its own per-step mesh check counting the cells of zero or negative volume; the moved
 points of every surface vertex match, at every time, the export's own wall (boundaryData points + displacement)
 and, on the vertices of no opened end, this script's own periodic Catmull-Rom of OUTDIR's frames within
 TOL_MM (default 1e-6 mm); with the export's cavity/steps (--cavity-steps), contour4d's own moving cavity written as
 OpenFOAM time directories passes checkMesh at every time. Exit 77 (skipped) with a message when OpenFOAM is not
-installed; exit 3 when all of that holds but OpenFOAM's own displacementLaplacian inverted cells somewhere (the
-counts are printed).
+installed; exit 0 when moveDynamicMesh inverted no cell either, exit 3 when all of the rest holds but OpenFOAM's
+own displacementLaplacian inverted cells somewhere (the counts are printed).
 """
 import os
 import re
