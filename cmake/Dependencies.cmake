@@ -33,6 +33,17 @@ c4d_require(meshoptimizer libmeshoptimizer-dev)
 # model.c4d: the payload is one zstd frame (docs/compact.md).
 c4d_require(zstd libzstd-dev)
 
+# TetGen 1.5 (the cavity's volume mesh for `contour4d export`, src/solver/cavity_mesh.cpp). Debian's libtet1.5-dev
+# ships a header and a library but no CMake package file, so it is found by path and wrapped in an imported target.
+find_path(TETGEN_INCLUDE_DIR tetgen.h)
+find_library(TETGEN_LIBRARY NAMES tet)
+if(NOT TETGEN_INCLUDE_DIR OR NOT TETGEN_LIBRARY)
+  message(FATAL_ERROR "contour4d needs TetGen: run scripts/setup.sh or `apt-get install libtet1.5-dev`")
+endif()
+add_library(TetGen::TetGen UNKNOWN IMPORTED)
+set_target_properties(TetGen::TetGen PROPERTIES IMPORTED_LOCATION "${TETGEN_LIBRARY}"
+                                                INTERFACE_INCLUDE_DIRECTORIES "${TETGEN_INCLUDE_DIR}")
+
 # Headless rendering (EGL + OpenGL, Mesa's llvmpipe where there is no GPU); the viewer's window (GLFW) is
 # optional and looked for in src/render/CMakeLists.txt.
 find_package(OpenGL COMPONENTS OpenGL EGL)

@@ -11,6 +11,7 @@ PACKAGES=(
   libtinygltf-dev libmeshoptimizer-dev libzstd-dev libstb-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev
   libtbb-dev
+  libtet1.5-dev openfoam
   libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libegl-dev libgl-dev libgles-dev libegl1-mesa-dev libgl1-mesa-dri
   python3 python3-numpy python3-pytest python3-meshio pybind11-dev snakemake chromium python3-vtk9 python3-nibabel python3-skimage python3-matplotlib python3-pil python3-pydicom

@@ -33,6 +33,7 @@ int run(int argc, char** argv) {
   add_phantom_command(root, commands);
   add_pack_command(root, commands);
   add_unpack_command(root, commands);
+  add_export_command(root, commands);
   add_render_command(root, commands);
   add_view_command(root, commands);
   try {

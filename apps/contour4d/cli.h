@@ -25,6 +25,7 @@ void add_pack_command(CLI::App& root, std::vector<Command>& commands);
 void add_unpack_command(CLI::App& root, std::vector<Command>& commands);
 void add_render_command(CLI::App& root, std::vector<Command>& commands);
 void add_view_command(CLI::App& root, std::vector<Command>& commands);
+void add_export_command(CLI::App& root, std::vector<Command>& commands);
 
 //! Parses argv and runs the chosen subcommand; returns the process exit code. Every
 //! c4d::Error becomes its ErrorCode with the message on stderr; nothing else escapes.

@@ -71,6 +71,34 @@ void catmull_rom_weights(double u, double w[4]) {
   w[3] = 0.5 * (u3 - u2);
 }
 
+TimeWeights time_weights(const std::vector<double>& times, double t, TimeInterpolation mode, double period_ms) {
+  check_times(times);
+  const std::size_t n = times.size();
+  const TimeSample s = locate_time(times, t, mode == TimeInterpolation::CatmullRomPeriodic, period_ms);
+  TimeWeights w;
+  w.frame[0] = s.i0;
+  w.weight[0] = 1.0;
+  if (mode == TimeInterpolation::Step || s.u == 0.0) return w;
+  if (mode == TimeInterpolation::Linear) {
+    w.count = 2;
+    w.frame = {s.i0, s.i1, 0, 0};
+    w.weight = {1.0 - s.u, s.u, 0.0, 0.0};
+    return w;
+  }
+  w.count = 4;
+  w.frame = {(s.i0 + n - 1) % n, s.i0, s.i1, (s.i1 + 1) % n};
+  catmull_rom_weights(s.u, w.weight.data());
+  return w;
+}
+
+std::vector<Vec3> combine_frames(const std::vector<std::vector<Vec3>>& frames, const TimeWeights& w) {
+  const std::vector<Vec3>& first = frames[w.frame[0]];
+  if (w.count == 1) return first;
+  std::vector<Vec3> out(first.size());
+  for (std::size_t v = 0; v < out.size(); ++v) out[v] = combine_vertex(frames, w, v);
+  return out;
+}
+
 std::vector<Vec3> interpolate_positions(const MeshSequence& seq, double t, TimeInterpolation mode, double period_ms) {
   std::vector<double> times = seq.times_ms;
   if (times.empty())
@@ -78,21 +106,7 @@ std::vector<Vec3> interpolate_positions(const MeshSequence& seq, double t, TimeI
   check_times(times);
   if (times.size() != seq.positions.size())
     throw InvalidInput(ErrorCode::BadMesh, {}, "times_ms and positions differ in length", "give one time per frame");
-  const std::size_t n = times.size();
-  const TimeSample s = locate_time(times, t, mode == TimeInterpolation::CatmullRomPeriodic, period_ms);
-  const auto& P = seq.positions;
-  if (mode == TimeInterpolation::Step || s.u == 0.0) return P[s.i0];
-  std::vector<Vec3> out(P[s.i0].size());
-  if (mode == TimeInterpolation::Linear) {
-    for (std::size_t v = 0; v < out.size(); ++v) out[v] = (1.0 - s.u) * P[s.i0][v] + s.u * P[s.i1][v];
-    return out;
-  }
-  double w[4];
-  catmull_rom_weights(s.u, w);
-  const std::size_t a = (s.i0 + n - 1) % n, d = (s.i1 + 1) % n;
-  for (std::size_t v = 0; v < out.size(); ++v)
-    out[v] = w[0] * P[a][v] + w[1] * P[s.i0][v] + w[2] * P[s.i1][v] + w[3] * P[d][v];
-  return out;
+  return combine_frames(seq.positions, time_weights(times, t, mode, period_ms));
 }
 
 MeshSequence resample_sequence(const MeshSequence& seq, std::size_t frames, TimeInterpolation mode, double period_ms) {

@@ -25,12 +25,13 @@ MeshSequence to_mesh_sequence(const MeshFrames& frames, const std::string& sourc
   for (std::size_t f = 0; f < frames.meshes.size(); ++f) {
     const TriangleMesh& m = frames.meshes[f];
     if (m.positions.size() != frames.meshes[0].positions.size() || m.triangles != seq.triangles)
-      throw InvalidInput(ErrorCode::BadMesh, {source, -1, static_cast<int>(f)},
-                         "frame " + std::to_string(f) + " does not share frame 0's vertices and triangles (" +
-                             std::to_string(m.positions.size()) + " vs " +
-                             std::to_string(frames.meshes[0].positions.size()) + " vertices)",
-                         "pack needs a 4D mesh with vertex correspondence (the output of `contour4d reconstruct`), "
-                         "not independent per-frame meshes");
+      throw InvalidInput(
+          ErrorCode::BadMesh, {source, -1, static_cast<int>(f)},
+          "frame " + std::to_string(f) + " does not share frame 0's vertices and triangles (" +
+              std::to_string(m.positions.size()) + " vs " + std::to_string(frames.meshes[0].positions.size()) +
+              " vertices)",
+          "pack and export need a 4D mesh with vertex correspondence (the output of `contour4d reconstruct`), "
+          "not independent per-frame meshes");
     seq.positions.push_back(m.positions);
   }
   seq.times_ms = frames.times_ms;

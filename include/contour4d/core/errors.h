@@ -36,6 +36,11 @@ enum class ErrorCode : int {
                            //!< no frame of reference, or one the file does not reference)
   EmptyStructure = 28,     //!< a structure without contours (an RT structure set's ROI with no closed planar
                            //!< contour, or a structure set without ROIs)
+  TooFewFrames = 29,       //!< `export`: the output folder holds one frame (a --frame run), not a cycle
+  OpenSurface = 30,        //!< `export`: the surface has holes (reconstructed with --cap open); it opens ends itself
+  InvertedElement = 31,    //!< `export`: the moving cavity mesh or a flattened end folds at some time: nothing written
+  UnknownFrameTimes = 32,  //!< `export`: the frame times are unknown (GPFiles, images): give --frame-ms or --cycle-ms
+  VolumeMeshFailed = 33,   //!< `export`: the cavity could not be tetrahedralised with its surface kept
 };
 
 //! Where in an input a problem was found; unset fields are omitted from messages.

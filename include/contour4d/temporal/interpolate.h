@@ -3,6 +3,7 @@
 //! \brief Positions between frames (Miara et al. §III.E, "Construction of the 4D mesh and
 //! interpolation"): linear, or periodic Catmull-Rom for a cardiac or breathing cycle.
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -32,6 +33,31 @@ double cycle_period(const std::vector<double>& times_ms, double period_ms = 0.0)
 
 //! Catmull-Rom weights of frames i-1, i, i+1, i+2 at fraction u (uniform parameterisation).
 void catmull_rom_weights(double u, double w[4]);
+
+//! What interpolate_positions combines at a time: position = Σ weight[k] · positions[frame[k]] over the first
+//! `count` terms, summed in this order (count 1: the frame itself, 2: linear, 4: Catmull-Rom).
+struct TimeWeights {
+  std::array<std::size_t, 4> frame{};
+  std::array<double, 4> weight{};
+  int count = 1;
+};
+
+//! The frames and weights of time t (ms) in `mode` (see interpolate_positions); the weights sum to 1. For
+//! quantities that depend linearly on the positions (displacements, their harmonic extension into a volume).
+//! \throw InvalidInput (BadMesh) on no times or times that do not increase.
+TimeWeights time_weights(const std::vector<double>& times_ms, double t_ms, TimeInterpolation mode,
+                         double period_ms = 0.0);
+
+//! Σ w.weight[k] · frames[w.frame[k]][v] for one vertex v, term after term in the weights' order.
+inline Vec3 combine_vertex(const std::vector<std::vector<Vec3>>& frames, const TimeWeights& w, std::size_t v) {
+  Vec3 x = w.weight[0] * frames[w.frame[0]][v];
+  for (std::size_t k = 1; k < static_cast<std::size_t>(w.count); ++k) x = x + w.weight[k] * frames[w.frame[k]][v];
+  return x;
+}
+
+//! Σ w.weight[k] · frames[w.frame[k]] per vertex, term after term in the weights' order (interpolate_positions'
+//! sum), for any per-frame vertex data that moves linearly with the positions (displacements included).
+std::vector<Vec3> combine_frames(const std::vector<std::vector<Vec3>>& frames, const TimeWeights& w);
 
 //! Vertex positions of the sequence at time t (ms).
 //! \throw InvalidInput (BadMesh) on an empty sequence or times that do not increase.

@@ -1,0 +1,149 @@
+// The solver hand-off's pieces on shapes built in code: time steps, the weights every output time uses, tet
+// quality measures, the cavity mesh (its boundary the surface, unchanged) and its motion with the wall (no
+// inverted tet, the cavity's volume the surface's, the same bits whatever the thread count).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "contour4d/core/errors.h"
+#include "contour4d/metrics/tet_quality.h"
+#include "contour4d/solver/cavity_mesh.h"
+#include "contour4d/solver/cavity_motion.h"
+#include "contour4d/solver/time_steps.h"
+#include "contour4d/temporal/interpolate.h"
+#include "contour4d/temporal/sequence.h"
+
+namespace c4d {
+namespace {
+
+TEST(TimeSteps, StepsAndDtCutTheCycle) {
+  const TimeSteps a = make_time_steps(0.8, {40, 0.0, 2});
+  EXPECT_EQ(a.steps_per_cycle, 40u);
+  EXPECT_DOUBLE_EQ(a.dt_s, 0.02);
+  ASSERT_EQ(a.times_s.size(), 81u);  // two cycles, both ends included
+  EXPECT_DOUBLE_EQ(a.times_s.back(), 1.6);
+  const TimeSteps b = make_time_steps(0.8, {0, 0.001, 1});
+  EXPECT_EQ(b.steps_per_cycle, 800u);
+  EXPECT_EQ(make_time_steps(0.8, {}).steps_per_cycle, 100u);  // the default
+}
+
+TEST(TimeSteps, BadOptionsAreUsageErrors) {
+  try {
+    make_time_steps(0.829, {0, 0.002, 1});  // 414.5 steps
+    FAIL() << "no throw";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Usage);
+    EXPECT_NE(std::string(e.what()).find("does not divide"), std::string::npos);
+  }
+  EXPECT_THROW(make_time_steps(0.8, {10, 0.01, 1}), InvalidInput);
+  EXPECT_THROW(make_time_steps(0.8, {10, 0.0, 0}), InvalidInput);
+}
+
+TEST(TimeSteps, WeightsGiveInterpolatePositionsBitForBit) {
+  const MeshSequence seq = synthetic_beating_mesh(1, 7);
+  for (double t : {0.0, 0.0371, 0.5, 0.9999, 1.3}) {
+    const auto a = combine_frames(seq.positions, step_weights(seq, t));
+    const auto b = interpolate_positions(seq, seq.times_ms.front() + 1000.0 * t, TimeInterpolation::CatmullRomPeriodic);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t v = 0; v < a.size(); ++v) {
+      EXPECT_EQ(a[v].x, b[v].x);
+      EXPECT_EQ(a[v].y, b[v].y);
+      EXPECT_EQ(a[v].z, b[v].z);
+    }
+  }
+  // At a frame's time the frame itself, exactly; over the wrap periodic.
+  EXPECT_EQ(combine_frames(seq.positions, step_weights(seq, 0.0))[5].x, seq.positions[0][5].x);
+}
+
+TEST(TetQuality, RegularTetIsTheIdeal) {
+  const Vec3 a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
+  const Vec3 p[4] = {a, b, c, d};
+  const double v = tet_volume(a, b, c, d);
+  const bool flip = v < 0;
+  const Vec3 q2 = flip ? p[3] : p[2], q3 = flip ? p[2] : p[3];
+  EXPECT_NEAR(tet_aspect_ratio(a, b, q2, q3), 1.0, 1e-12);
+  EXPECT_NEAR(tet_min_dihedral_deg(a, b, q2, q3), std::acos(1.0 / 3.0) * 180.0 / std::numbers::pi, 1e-9);
+  const TetQuality q = measure_tets({a, b, q2, q3}, {{0, 1, 2, 3}});
+  EXPECT_EQ(q.inverted, 0u);
+  EXPECT_NEAR(q.volume_mm3, 8.0 / 3.0, 1e-12);
+  const TetQuality inv = measure_tets({a, b, q3, q2}, {{0, 1, 2, 3}});
+  EXPECT_EQ(inv.inverted, 1u);
+  EXPECT_LT(inv.min_volume_mm3, 0.0);
+}
+
+class Cavity : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    seq_ = new MeshSequence(synthetic_beating_mesh(2, 10));
+    mesh_ = new TetMesh(mesh_cavity(seq_->frame(0)));
+  }
+  static void TearDownTestSuite() {
+    delete seq_;
+    delete mesh_;
+  }
+  static MeshSequence* seq_;
+  static TetMesh* mesh_;
+};
+MeshSequence* Cavity::seq_ = nullptr;
+TetMesh* Cavity::mesh_ = nullptr;
+
+TEST_F(Cavity, BoundaryIsTheSurfaceUnchanged) {
+  const TetMesh& m = *mesh_;
+  ASSERT_EQ(m.surface_nodes, seq_->positions[0].size());
+  EXPECT_GT(m.nodes.size(), m.surface_nodes);  // inner nodes from the quality bound
+  EXPECT_EQ(m.boundary, seq_->triangles);
+  for (std::size_t v = 0; v < m.surface_nodes; ++v) EXPECT_EQ(m.nodes[v].x, seq_->positions[0][v].x);
+  const TetQuality q = measure_tets(m.nodes, m.tets);
+  EXPECT_EQ(q.inverted, 0u);
+  EXPECT_NEAR(q.volume_mm3, signed_volume(seq_->frame(0)), 1e-9 * q.volume_mm3);
+  EXPECT_GT(q.min_dihedral_deg, 5.0);
+  for (std::size_t t = 0; t < m.boundary.size(); ++t) {
+    const Tet& k = m.tets[m.boundary_tet[t]];
+    int shared = 0;
+    for (std::uint32_t v : m.boundary[t]) shared += std::count(k.begin(), k.end(), v) > 0 ? 1 : 0;
+    EXPECT_EQ(shared, 3);
+  }
+}
+
+TEST_F(Cavity, MovesWithTheWallWithoutInvertingAndKeepsItsVolume) {
+  const TimeSteps steps = make_time_steps(1.0, {50, 0.0, 1});
+  const CavityMotion m = cavity_motion(*mesh_, *seq_, steps.times_s, {2});
+  EXPECT_EQ(m.extension, Extension::Harmonic);
+  ASSERT_EQ(m.steps.size(), steps.times_s.size());
+  for (std::size_t i = 0; i < m.steps.size(); ++i) {
+    EXPECT_EQ(m.steps[i].inverted, 0u);
+    const double surface =
+        signed_volume({combine_frames(seq_->positions, step_weights(*seq_, steps.times_s[i])), seq_->triangles});
+    EXPECT_NEAR(m.steps[i].volume_mm3, surface, 1e-9 * surface);
+  }
+  // The inner nodes at a key frame are the harmonic extension of that frame's wall: they solve the system.
+  const auto nodes = cavity_nodes_at(*mesh_, *seq_, m, step_weights(*seq_, 0.3));
+  for (std::size_t v = 0; v < mesh_->surface_nodes; ++v) EXPECT_EQ(nodes[v].x, seq_->positions[3][v].x);
+  EXPECT_GT(m.min_dihedral_deg, 1.0);
+}
+
+TEST_F(Cavity, ThreadCountDoesNotChangeABit) {
+  const TimeSteps steps = make_time_steps(1.0, {20, 0.0, 1});
+  const CavityMotion one = cavity_motion(*mesh_, *seq_, steps.times_s, {1});
+  const CavityMotion two = cavity_motion(*mesh_, *seq_, steps.times_s, {2});
+  for (std::size_t i = 0; i < one.steps.size(); ++i) {
+    EXPECT_EQ(one.steps[i].volume_mm3, two.steps[i].volume_mm3);
+    EXPECT_EQ(one.steps[i].min_dihedral_deg, two.steps[i].min_dihedral_deg);
+    EXPECT_EQ(one.steps[i].max_aspect_ratio, two.steps[i].max_aspect_ratio);
+  }
+}
+
+TEST(CavityMesh, SelfIntersectingSurfaceFailsWithItsOwnCode) {
+  TriangleMesh m = synthetic_beating_mesh(1, 1).frame(0);
+  m.positions[0] = m.positions[0] * -1.5;  // pull one vertex out through the opposite side
+  try {
+    mesh_cavity(m);
+    FAIL() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::VolumeMeshFailed);
+  }
+}
+
+}  // namespace
+}  // namespace c4d
