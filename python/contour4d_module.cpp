@@ -167,6 +167,8 @@ InputOptions input_options(const py::kwargs& kw) {
       o.cycle_ms = v.cast<double>();
     else if (k == "strict")
       o.strict = v.cast<bool>();
+    else if (k == "align_slices")
+      o.align_slices = v.cast<bool>();
     else if (k == "exact_contours")
       o.contour_tolerance_mm = v.cast<bool>() ? 0.0 : o.contour_tolerance_mm;
     else if (k == "contour_tolerance")
@@ -404,7 +406,7 @@ PYBIND11_MODULE(contour4d, m) {
         "'points': (n, 3)}], 'timing',\n"
         "'repairs', 'notes', 'format', 'space', 'stack_normal', 'frames'}.\n"
         "Options as `contour4d reconstruct`'s: type, label ('all': every structure), labels, slice_axis, space,\n"
-        "frame_ms, cycle_ms, exact_contours, contour_tolerance, strict.");
+        "frame_ms, cycle_ms, exact_contours, contour_tolerance, align_slices, strict.");
   m.def("reconstruct", &reconstruct, "input"_a, "output"_a = py::none(), "keep_failed"_a = py::none(),
         "format"_a = "vtp",
         "Reconstructs INPUT (a path, a list of contour dicts, or read()'s dict) as `contour4d reconstruct` does.\n"

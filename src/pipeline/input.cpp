@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <map>
 #include <string_view>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include "contour4d/core/contour_gaps.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/io/contours_json.h"
 #include "contour4d/io/gpfile.h"
@@ -246,8 +249,65 @@ void smooth_traced_contours(InputResult& r, const InputOptions& o) {
       r.smoothing_tolerance_mm, r.smoothing_source, worst));
 }
 
-// The note on repairs, the smoothing and the frame times, for every input.
+// Breath-hold shifts undone on request (slice_alignment.h), said in the notes.
+void align_slices_on_request(InputResult& r, const InputOptions& o) {
+  if (!o.align_slices) return;
+  r.aligned = true;
+  r.alignment = align_slices(r.sequence);
+  if (r.alignment.degree < 0) {
+    r.notes.push_back("--align-slices: fewer than five slices hold " + r.alignment.label + "; nothing moved");
+    return;
+  }
+  const auto worst = std::max_element(r.alignment.shifts.begin(), r.alignment.shifts.end(),
+                                      [](const SliceShift& a, const SliceShift& b) { return a.shift_mm < b.shift_mm; });
+  r.notes.push_back(
+      fmt::format("slices aligned in plane on the {} centroids' axis (degree {}): {} slices, moved at "
+                  "most {:.2f} mm (slice {}); see report.json \"slice_alignment\"",
+                  r.alignment.label, r.alignment.degree, r.alignment.shifts.size(), worst->shift_mm, worst->slice));
+}
+
+// Slices contoured in some frames only, listed and said: those frames are reconstructed from what they have.
+void note_partial_slices(InputResult& r) {
+  const std::vector<Frame>& frames = r.sequence.frames;
+  std::map<int, std::vector<bool>> present;
+  for (std::size_t f = 0; f < frames.size(); ++f)
+    for (const Slice& s : frames[f].slices) {
+      std::vector<bool>& p = present[s.id];
+      p.resize(frames.size(), false);
+      p[f] = true;
+    }
+  for (const auto& [id, p] : present) {
+    SliceGap gap{id, {}};
+    for (std::size_t f = 0; f < p.size(); ++f)
+      if (!p[f]) gap.missing_frames.push_back(static_cast<int>(f));
+    if (gap.missing_frames.empty()) continue;
+    r.notes.push_back(
+        fmt::format("slice {} has no contours in {} of {} frames ({}): those frames are reconstructed "
+                    "from the slices they have",
+                    id, gap.missing_frames.size(), frames.size(), fmt::join(gap.missing_frames, ", ")));
+    r.slices_in_some_frames.push_back(std::move(gap));
+  }
+}
+
+// Contours left out of some frames, filled in time where the slice has them in other frames (contour_gaps.h),
+// each listed as a repair; --strict leaves them out.
+void fill_gaps_in_time(InputResult& r, const InputOptions& o) {
+  if (o.strict) return;
+  for (const ContourFill& f : fill_contour_gaps(r.sequence)) {
+    const std::string detail =
+        f.from_frame == f.to_frame
+            ? fmt::format("no {} contour in this frame: copied from frame {}", f.label, f.from_frame)
+            : fmt::format("no {} contour in this frame: interpolated between frames {} and {} (weight {:.2f})", f.label,
+                          f.from_frame, f.to_frame, f.weight);
+    r.repairs.push_back({f.frame, f.slice, -1, "contour-filled-in-time", detail, 0.0});
+  }
+}
+
+// The slice alignment, the note on repairs, the smoothing and the frame times, for every input.
 void finish_input(InputResult& result, const InputOptions& options) {
+  fill_gaps_in_time(result, options);
+  note_partial_slices(result);
+  align_slices_on_request(result, options);
   smooth_traced_contours(result, options);
   if (!result.repairs.empty())
     result.notes.push_back(

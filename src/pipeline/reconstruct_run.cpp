@@ -66,6 +66,27 @@ Json smoothing_json(const InputResult& read) {
           {"contours", each}};
 }
 
+// Slices contoured in some frames only (each frame reconstructed from what it has).
+Json gaps_json(const std::vector<SliceGap>& gaps) {
+  Json a = Json::array();
+  for (const SliceGap& g : gaps) a.push_back({{"slice", g.slice}, {"missing_frames", g.missing_frames}});
+  return a;
+}
+
+// How far each slice was moved in plane (--align-slices; slice_alignment.h).
+Json alignment_json(const InputResult& read) {
+  if (!read.aligned) return {{"applied", false}};
+  Json shifts = Json::array();
+  for (const SliceShift& s : read.alignment.shifts)
+    shifts.push_back({{"slice", s.slice},
+                      {"offset_mm", s.offset_mm},
+                      {"shift_mm", {s.shift.x, s.shift.y, s.shift.z}},
+                      {"length_mm", s.shift_mm},
+                      {"fit_weight", s.weight}});
+  return {
+      {"applied", true}, {"label", read.alignment.label}, {"axis_degree", read.alignment.degree}, {"slices", shifts}};
+}
+
 Json surface_json(const SurfaceReport& r) {
   return {{"contours", r.contours},
           {"caps", r.caps},
@@ -122,6 +143,9 @@ Json start_report(const InputResult& read, const std::string& input, const Recon
       {"frame_times", {{"source", read.timing}, {"known", read.timing != "unknown"}}},
       {"repairs", repairs_json(read.repairs)},
       {"contour_smoothing", smoothing_json(read)},
+      {"slice_alignment", alignment_json(read)},
+      {"slices_in_some_frames", gaps_json(read.slices_in_some_frames)},
+      {"input_notes", read.notes},
       {"options",
        {{"edge_mm", a.edge},
         {"cap", a.cap},

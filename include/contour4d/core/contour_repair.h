@@ -18,7 +18,8 @@ struct ContourRepair {
   int slice = -1;       //!< slice id (after a merge: the id kept)
   int contour = -1;     //!< 0-based index of the contour within its frame in the input (−1: several)
   std::string kind;     //!< "duplicate-points", "spike", "open-arc-closed", "open-arc-dropped", "loop-removed",
-                        //!< "too-few-points", "no-area", "slices-merged"
+                        //!< "too-few-points", "no-area", "slices-merged", "contour-filled-in-time"
+                        //!< (contour_gaps.h)
   std::string detail;   //!< what was done, in words
   double moved_mm = 0;  //!< largest distance from a removed or dropped point to the contour kept (mm; 0: none)
 };

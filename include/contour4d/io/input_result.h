@@ -8,9 +8,16 @@
 
 #include "contour4d/core/contour_repair.h"
 #include "contour4d/core/contour_smoothing.h"
+#include "contour4d/core/slice_alignment.h"
 #include "contour4d/core/stack.h"
 
 namespace c4d {
+
+//! A slice contoured in some frames only: each frame is reconstructed from the slices it has.
+struct SliceGap {
+  int slice = 0;                    //!< slice id
+  std::vector<int> missing_frames;  //!< 0-based frames without a contour on it
+};
 
 //! What was read, and notes for the user (which slices and frames were used or skipped, why).
 struct InputResult {
@@ -24,7 +31,10 @@ struct InputResult {
                           //!< contours, or contours fitted to a label mask's edge)
   double smoothing_tolerance_mm = 0.0;  //!< how far the contours were allowed to move when smoothed (0: not smoothed)
   std::string smoothing_source;         //!< where that tolerance came from, in words
-  std::vector<ContourSmoothing> smoothing;  //!< what the smoothing did to each contour (contour_smoothing.h)
+  std::vector<ContourSmoothing> smoothing;      //!< what the smoothing did to each contour (contour_smoothing.h)
+  std::vector<SliceGap> slices_in_some_frames;  //!< slices missing from some frames (by slice id)
+  bool aligned = false;                         //!< the slices were moved in plane (InputOptions::align_slices)
+  SliceAlignment alignment;                     //!< how far each slice moved (when `aligned`)
 };
 
 }  // namespace c4d
