@@ -335,16 +335,37 @@ std::set<int> choose_slices(const std::map<int, GpFileSlice>& info, const std::m
   return used;
 }
 
+constexpr const char* kRvFreeWall = "SAX_RV_FREEWALL";
+constexpr const char* kRvSeptum = "SAX_RV_SEPTUM";
+constexpr const char* kRvEndoLabel = "rv-endo";
+
 //! How the contours were closed, for the notes.
 struct ClosingStats {
   int closed_epi = 0, straight_epi = 0;
+  int joined_rv = 0;                      // free wall + septum joined into one RV endocardium
   std::map<std::string, int> open_types;  // type -> contours with a closing gap
 };
 
-// biv-me's epicardium is a loop with the septal part missing; the opening is the largest gap, not
-// necessarily between the last and first points: rotates it to the ends of c, then closes it with
-// the septum points where there are some (`septum` null: none).
-void close_epicardium(std::vector<Vec3>& c, const std::vector<const GuidePoint*>* septum, ClosingStats& stats) {
+// Appends the septum's points to the open arc c, in the direction that joins the open ends with the shorter
+// gaps. Septum ends may overshoot the arc's open ends; points that lead away from the end they join are
+// dropped, or the joint folds over itself.
+void append_septum(std::vector<Vec3>& c, const std::vector<const GuidePoint*>& septum) {
+  const Vec3 s0 = septum.front()->p, s1 = septum.back()->p;
+  const bool reverse =
+      distance(c.back(), s1) + distance(s0, c.front()) < distance(c.back(), s0) + distance(s1, c.front());
+  std::vector<Vec3> s;
+  for (const GuidePoint* g : septum) s.push_back(g->p);
+  if (reverse) std::reverse(s.begin(), s.end());
+  std::size_t b = 0, e = s.size();
+  while (e - b > 1 && distance(s[b + 1], c.back()) < distance(s[b], c.back())) ++b;
+  while (e - b > 1 && distance(s[e - 2], c.front()) < distance(s[e - 1], c.front())) --e;
+  c.insert(c.end(), s.begin() + static_cast<std::ptrdiff_t>(b), s.begin() + static_cast<std::ptrdiff_t>(e));
+}
+
+// biv-me's open arcs (the epicardium without its septal part, the RV free wall) are stored as loops whose
+// opening, the largest gap, is not necessarily between the last and first points: rotates it to the ends of c.
+// Returns true when the opening is wider than 4 × the median point spacing (the arc is open).
+bool rotate_opening_to_ends(std::vector<Vec3>& c) {
   std::vector<double> gaps;
   std::size_t widest = 0;
   for (std::size_t i = 0; i < c.size(); ++i) {
@@ -354,23 +375,16 @@ void close_epicardium(std::vector<Vec3>& c, const std::vector<const GuidePoint*>
   const double gap = gaps[widest];
   std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
   std::rotate(c.begin(), c.begin() + static_cast<std::ptrdiff_t>((widest + 1) % c.size()), c.end());
-  if (gap <= 4.0 * gaps[gaps.size() / 2]) {
+  return gap > 4.0 * gaps[gaps.size() / 2];
+}
+
+// The epicardium's opening closed with the septum points where there are some (`septum` null: none).
+void close_epicardium(std::vector<Vec3>& c, const std::vector<const GuidePoint*>* septum, ClosingStats& stats) {
+  if (!rotate_opening_to_ends(c)) {
     // already closed
   } else if (septum != nullptr && !septum->empty()) {
-    // The septal wall's RV side completes the LV epicardium (as biv-me fits it): append the
-    // septum in the direction that joins the open ends with the shorter gaps.
-    const Vec3 s0 = septum->front()->p, s1 = septum->back()->p;
-    const bool reverse =
-        distance(c.back(), s1) + distance(s0, c.front()) < distance(c.back(), s0) + distance(s1, c.front());
-    std::vector<Vec3> s;
-    for (const GuidePoint* g : *septum) s.push_back(g->p);
-    if (reverse) std::reverse(s.begin(), s.end());
-    // Septum ends may overshoot the epicardium's open ends; drop points that lead away
-    // from the end they join, or the joint folds over itself.
-    std::size_t b = 0, e = s.size();
-    while (e - b > 1 && distance(s[b + 1], c.back()) < distance(s[b], c.back())) ++b;
-    while (e - b > 1 && distance(s[e - 2], c.front()) < distance(s[e - 1], c.front())) --e;
-    c.insert(c.end(), s.begin() + static_cast<std::ptrdiff_t>(b), s.begin() + static_cast<std::ptrdiff_t>(e));
+    // The septal wall's RV side completes the LV epicardium (as biv-me fits it).
+    append_septum(c, *septum);
     ++stats.closed_epi;
   } else {
     ++stats.straight_epi;
@@ -395,8 +409,12 @@ bool frame_contours(const std::vector<GuidePoint>& points, std::size_t f, const 
     if (used.count(g.slice)) groups[{g.slice, g.type}].push_back(&g);
   int index = 0;
   bool any = false;
+  const bool join_rv = wanted.count(kRvFreeWall) && wanted.count(kRvSeptum);
   for (const auto& [key, pts] : groups) {
     if (!wanted.count(key.second)) continue;  // the septum only closes the epicardium
+    // The RV endocardium is the free wall and the septum's RV side joined: the septum goes in with the free
+    // wall on slices that have both.
+    if (join_rv && key.second == kRvSeptum && groups.count({key.first, kRvFreeWall})) continue;
     any = true;
     RawContour rc;
     rc.frame = static_cast<int>(f);
@@ -406,7 +424,15 @@ bool frame_contours(const std::vector<GuidePoint>& points, std::size_t f, const 
     rc.contour.label = gpfile_label(key.second);
     for (const GuidePoint* g : pts) rc.contour.points.push_back(g->p);
     std::vector<Vec3>& c = rc.contour.points;
-    if (key.second == "SAX_LV_EPICARDIAL" && c.size() >= 3) {
+    if (join_rv && (key.second == kRvFreeWall || key.second == kRvSeptum)) {
+      rc.contour.label = kRvEndoLabel;
+      const auto sep = groups.find({key.first, kRvSeptum});
+      if (key.second == kRvFreeWall && sep != groups.end() && !sep->second.empty() && c.size() >= 3) {
+        rotate_opening_to_ends(c);
+        append_septum(c, sep->second);
+        ++stats.joined_rv;
+      }
+    } else if (key.second == "SAX_LV_EPICARDIAL" && c.size() >= 3) {
       const auto sep = groups.find({key.first, "SAX_RV_SEPTUM"});
       close_epicardium(c, sep != groups.end() ? &sep->second : nullptr, stats);
     } else if (c.size() >= 3) {
@@ -474,6 +500,9 @@ void add_notes(GpFileResult& result, const std::vector<std::string>& types, cons
     result.notes.push_back("SAX_LV_EPICARDIAL is open and had no SAX_RV_SEPTUM points in " +
                            std::to_string(stats.straight_epi) +
                            " contours: closed with a straight edge (septum shape lost there)");
+  if (stats.joined_rv)
+    result.notes.push_back("SAX_RV_FREEWALL and SAX_RV_SEPTUM joined into \"" + std::string(kRvEndoLabel) + "\" in " +
+                           std::to_string(stats.joined_rv) + " contours");
   for (const auto& [type, n] : stats.open_types)
     result.notes.push_back(type + " looks open in " + std::to_string(n) +
                            " contours (closing gap > 4x the median point spacing): closed with a straight edge");

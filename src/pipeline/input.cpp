@@ -113,6 +113,20 @@ fs::path rtstruct_in_folder(const fs::path& dir, const Location& where) {
 
 namespace {
 
+// The GPFile contour types a label asks for when --type is not given: "all" every short-axis structure (the RV
+// endocardium as its free wall and septum, joined on reading), else the types of that label; none: the reader's
+// default (SAX_LV_ENDOCARDIAL).
+std::vector<std::string> gpfile_types_for(const std::string& label) {
+  static const std::map<std::string, std::vector<std::string>> kTypes = {
+      {"all", {"SAX_LV_ENDOCARDIAL", "SAX_LV_EPICARDIAL", "SAX_RV_FREEWALL", "SAX_RV_SEPTUM"}},
+      {"lv-endo", {"SAX_LV_ENDOCARDIAL"}},
+      {"lv-epi", {"SAX_LV_EPICARDIAL"}},
+      {"lv-wall", {"SAX_LV_ENDOCARDIAL", "SAX_LV_EPICARDIAL"}},
+      {"rv-endo", {"SAX_RV_FREEWALL", "SAX_RV_SEPTUM"}}};
+  const auto it = kTypes.find(label);
+  return it == kTypes.end() ? std::vector<std::string>{} : it->second;
+}
+
 // The pixel size of the slices a GPFile folder's contours were traced on (mean over the slices used; 0: none).
 double mean_pixel_mm(const GpFileResult& r) {
   double sum = 0.0;
@@ -160,7 +174,7 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
       return read_rtstruct_input(rtstruct_in_folder(input, where), options, space);  // the label chosen on reading
     if (!has_gpfiles(dir)) throw IoError(ErrorCode::Format, where, "folder holds no GPFile_*.txt files", kSupported);
     GpFileOptions gp;
-    gp.contour_types = options.contour_types;
+    gp.contour_types = options.contour_types.empty() ? gpfile_types_for(options.label) : options.contour_types;
     gp.stack = options.stack;
     gp.repair = !options.strict;
     GpFileResult r = read_gpfile(dir, gp);

@@ -85,6 +85,31 @@ TEST(GpFile, LongAxisSlicesAreSkippedWithANote) {
   EXPECT_TRUE(noted);
 }
 
+// The RV endocardium: each slice's free wall and septum arcs joined into one closed contour, whose points are
+// the free wall's and (nearly all of) the septum's, on every frame and slice that has both.
+TEST(GpFile, Patient1RvFreeWallAndSeptumJoined) {
+  GpFileOptions o;
+  o.contour_types = {"SAX_RV_FREEWALL", "SAX_RV_SEPTUM"};
+  const GpFileResult r = read_gpfile(patient_dir(), o);
+  const Sequence& seq = r.sequence;
+  ASSERT_EQ(seq.frames.size(), 25u);
+  GpFileOptions wall_only;
+  wall_only.contour_types = {"SAX_RV_FREEWALL"};
+  const Sequence walls = read_gpfile(patient_dir(), wall_only).sequence;
+  int joined = 0;
+  for (std::size_t f = 0; f < seq.frames.size(); ++f)
+    for (const Slice& s : seq.frames[f].slices) {
+      SCOPED_TRACE(testing::Message() << "frame " << f << " slice " << s.id);
+      ASSERT_EQ(s.contours.size(), 1u);
+      EXPECT_EQ(s.contours[0].label, "rv-endo");
+      for (const Slice& w : walls.frames[f].slices)
+        if (w.id == s.id && w.contours[0].points.size() < s.contours[0].points.size()) ++joined;
+    }
+  EXPECT_GE(joined, 100);  // 115 of the study's contours have both arcs
+  EXPECT_TRUE(std::any_of(r.notes.begin(), r.notes.end(),
+                          [](const std::string& n) { return n.find("joined into \"rv-endo\"") != std::string::npos; }));
+}
+
 TEST(GpFile, MissingSliceInfoNamesFolderAndFile) {
   try {
     read_gpfile(fs::path(C4D_CORPUS_DIR) / "gpfile" / "bad_22_missing_sliceinfo");

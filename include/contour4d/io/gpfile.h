@@ -15,7 +15,9 @@ namespace c4d {
 
 //! How to read a GPFile folder.
 struct GpFileOptions {
-  std::vector<std::string> contour_types;  //!< contour types to keep; empty = {"SAX_LV_ENDOCARDIAL"}
+  std::vector<std::string> contour_types;  //!< contour types to keep; empty = {"SAX_LV_ENDOCARDIAL"}. With both
+                                           //!< SAX_RV_FREEWALL and SAX_RV_SEPTUM, each slice's two arcs are joined
+                                           //!< into one contour labelled "rv-endo" (the RV endocardium)
   double parallel_tolerance_deg = 5.0;     //!< image planes within this angle of the short-axis one are kept
   StackOptions stack;                      //!< validation tolerances for build_sequence
   bool repair = true;                      //!< fix contour flaws (contour_repair.h) instead of refusing them
