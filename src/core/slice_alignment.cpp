@@ -206,8 +206,8 @@ SliceAlignment align_slices(Sequence& seq, const SliceAlignmentOptions& options)
   out.label = options.label.empty() ? most_common_label(seq) : options.label;
   const std::vector<SliceCentroid> c = mean_centroids(seq, out.label);
   const int n = static_cast<int>(c.size());
-  // At least as many slices again as coefficients, and one more, so that a shifted slice stands out.
-  out.degree = std::min(options.max_degree, (n - 1) / 2 - 1);
+  // Two slices more than coefficients: a shifted slice can stand out.
+  out.degree = std::min(options.max_degree, n - 3);
   if (out.degree < 1) {  // a constant axis would take the stack's tilt against the ventricle for shifts
     out.degree = -1;
     return out;

@@ -269,7 +269,7 @@ void align_slices_on_request(InputResult& r, const InputOptions& o) {
   r.aligned = true;
   r.alignment = align_slices(r.sequence);
   if (r.alignment.degree < 0) {
-    r.notes.push_back("--align-slices: fewer than five slices hold " + r.alignment.label + "; nothing moved");
+    r.notes.push_back("--align-slices: fewer than four slices hold " + r.alignment.label + "; nothing moved");
     return;
   }
   const auto worst = std::max_element(r.alignment.shifts.begin(), r.alignment.shifts.end(),

@@ -25,8 +25,8 @@ struct SliceAlignmentOptions {
   std::string label;          //!< the structure whose centroids define the axis; empty: the label on the most
                               //!< slices (ties: the first by name), e.g. lv-endo
   int max_degree = 2;         //!< the axis: a polynomial in the slice offset of at most this degree (2: a gently
-                              //!< bent ventricle); lowered to leave more than twice as many slices as coefficients
-                              //!< (5–6 slices: a straight axis)
+                              //!< bent ventricle); lowered to leave two slices more than coefficients (4 slices: a
+                              //!< straight axis)
   double min_scale_mm = 0.5;  //!< floor of the robust fit's residual scale σ (mm); a slice's weight falls from 1 on
                               //!< the axis to 0 at 4.685 σ (2.3 mm at the floor), where it counts as shifted
   int iterations = 20;        //!< reweighting rounds of the robust (Tukey bisquare) fit
@@ -35,14 +35,14 @@ struct SliceAlignmentOptions {
 //! What align_slices did.
 struct SliceAlignment {
   std::string label;               //!< the structure whose centroids were used
-  int degree = 0;                  //!< degree of the fitted axis (−1: fewer than five slices, nothing moved)
+  int degree = 0;                  //!< degree of the fitted axis (−1: fewer than four slices, nothing moved)
   std::vector<SliceShift> shifts;  //!< one per slice id that holds `label`, by offset
 };
 
 //! Moves each slice of `seq` in its plane so that the centroid of its `label` contours (area-weighted, averaged
 //! over the frames that have them) lies on a smooth axis: the robust least-squares polynomial fit of the
 //! centroids against the slice offset. Every contour of a slice (every label, every frame) moves by the same
-//! in-plane vector. With fewer than five slices nothing moves (degree −1).
+//! in-plane vector. With fewer than four slices nothing moves (degree −1).
 SliceAlignment align_slices(Sequence& seq, const SliceAlignmentOptions& options = {});
 
 }  // namespace c4d
