@@ -125,6 +125,9 @@ void add_contour(Frame& frame, int id, double offset, Contour c) {
   frame.slices.insert(at, Slice{id, offset, {std::move(c)}});
 }
 
+// The widest span of frames a fill may bridge: a third of the cycle (at least 2 frames).
+int max_span(std::size_t frames) { return std::max(2, static_cast<int>(frames) / 3); }
+
 // The fills of one label, found on the unchanged sequence and then added.
 std::vector<std::pair<ContourFill, Contour>> fills_of(const Sequence& seq, const std::string& label) {
   std::vector<std::pair<ContourFill, Contour>> out;
@@ -135,8 +138,10 @@ std::vector<std::pair<ContourFill, Contour>> fills_of(const Sequence& seq, const
       int back = 0, ahead = 0;
       const int from = nearest_with_one(s, static_cast<int>(f), -1, back);
       const int to = nearest_with_one(s, static_cast<int>(f), +1, ahead);
-      if (from < 0 || to < 0) continue;
-      const double w = from == to ? 0.0 : static_cast<double>(back) / (back + ahead);
+      // Two distinct frames, not far apart: a copy of the only other frame (a two-phase study's ED for its ES)
+      // would be a guess, not an interpolation.
+      if (from < 0 || to < 0 || from == to || back + ahead > max_span(s.count.size())) continue;
+      const double w = static_cast<double>(back) / (back + ahead);
       Contour c = blend(seq, *s.first[static_cast<std::size_t>(from)], *s.first[static_cast<std::size_t>(to)], w);
       if (is_self_intersecting(in_plane(seq, c))) continue;
       out.push_back({ContourFill{static_cast<int>(f), id, label, from, to, w}, std::move(c)});

@@ -308,11 +308,10 @@ void note_partial_slices(InputResult& r) {
 void fill_gaps_in_time(InputResult& r, const InputOptions& o) {
   if (o.strict) return;
   for (const ContourFill& f : fill_contour_gaps(r.sequence)) {
-    const std::string detail =
-        f.from_frame == f.to_frame
-            ? fmt::format("no {} contour in this frame: copied from frame {}", f.label, f.from_frame)
-            : fmt::format("no {} contour in this frame: interpolated between frames {} and {} (weight {:.2f})", f.label,
-                          f.from_frame, f.to_frame, f.weight);
+    const std::string detail = fmt::format(
+        "no {} contour in this frame: interpolated between frames {} and {} "
+        "(weight {:.2f})",
+        f.label, f.from_frame, f.to_frame, f.weight);
     r.repairs.push_back({f.frame, f.slice, -1, "contour-filled-in-time", detail, 0.0});
   }
 }

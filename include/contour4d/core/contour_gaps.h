@@ -22,7 +22,8 @@ struct ContourFill {
 };
 
 //! Fills the contour of `label` on a slice in each frame that lacks it, when (a) that slice holds exactly one
-//! contour of the label in some other frames, (b) in the frame that lacks it, slices with the label lie on both
+//! contour of the label in a frame before and a different frame after it (cyclically), at most a third of the
+//! cycle apart (a two-phase study's other phase is not interpolation), (b) in the frame that lacks it, slices with the label lie on both
 //! sides of it (an omission inside the structure, not its end: a structure's end moving across a slice plane in
 //! mid-cycle is left as it is), and (c) the blend is a simple polygon. The fill blends the nearest frames before
 //! and after (cyclically) that have it, both resampled to the same count by arc length, with the start and
