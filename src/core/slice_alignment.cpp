@@ -128,15 +128,20 @@ Eigen::MatrixXd weighted_fit(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Y,
 // The shifted slices at the ends of the stack have the most leverage on a plain least-squares start.
 Eigen::VectorXd robust_start(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Y) {
   const Eigen::Index n = A.rows(), m = A.cols();
+  // The subsets are drawn from at most kCandidates slices spread evenly over the stack (a CT stack has hundreds).
+  constexpr Eigen::Index kCandidates = 40;
+  std::vector<Eigen::Index> candidates;
+  for (Eigen::Index q = 0; q < std::min(n, kCandidates); ++q)
+    candidates.push_back(n <= kCandidates ? q : q * (n - 1) / (kCandidates - 1));
   std::vector<std::vector<Eigen::Index>> subsets;
   std::vector<Eigen::Index> pick(static_cast<std::size_t>(m));
-  const auto enumerate = [&](auto&& self, Eigen::Index from, std::size_t depth) -> void {
+  const auto enumerate = [&](auto&& self, std::size_t from, std::size_t depth) -> void {
     if (depth == pick.size()) {
       subsets.push_back(pick);
       return;
     }
-    for (Eigen::Index i = from; i < n; ++i) {
-      pick[depth] = i;
+    for (std::size_t i = from; i < candidates.size(); ++i) {
+      pick[depth] = candidates[i];
       self(self, i + 1, depth + 1);
     }
   };
