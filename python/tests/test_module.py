@@ -215,3 +215,15 @@ def test_real_data_sunnybrook(data_dir):
     assert res["positions"].shape[0] == 2 and res["report"]["checks"]["ok"]
     assert res["report"]["frame_times"]["source"] == "data"
     assert 0 < res["report"]["summary"]["ef_percent"] < 100
+
+
+def test_real_data_bivme_rv_and_slice_alignment(data_dir):
+    gp = data_dir / "bivme-patient1" / "guidepoints"
+    rv = contour4d.read(gp, label="rv-endo")
+    assert {c["label"] for c in rv["contours"]} == {"rv-endo"}
+    assert any("joined into" in n for n in rv["notes"])
+    plain = contour4d.read(gp)
+    aligned = contour4d.read(gp, align_slices=True)
+    assert any("slices aligned in plane" in n for n in aligned["notes"])
+    moved = [np.abs(a["points"] - p["points"]).max() for a, p in zip(aligned["contours"], plain["contours"])]
+    assert 0 < max(moved) < 3  # each slice moved in its plane by at most a few mm
