@@ -6,15 +6,10 @@
 
 #include <fmt/format.h>
 
+#include "raw_bytes_internal.h"
+
 namespace c4d {
 namespace {
-
-template <class T>
-void append_raw(std::string& out, const T& v) {
-  char buf[sizeof(T)];
-  std::memcpy(buf, &v, sizeof(T));  // the library targets little-endian hosts (x86-64, arm64)
-  out.append(buf, sizeof(T));
-}
 
 // Collects the appended blocks and the DataArray tags that point into them.
 struct Appended {

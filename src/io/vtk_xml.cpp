@@ -9,17 +9,12 @@
 
 #include <fmt/format.h>
 
+#include "raw_bytes_internal.h"
+
 #include "contour4d/core/errors.h"
 
 namespace c4d {
 namespace {
-
-template <class T>
-void append_raw(std::string& out, const T& v) {
-  char buf[sizeof(T)];
-  std::memcpy(buf, &v, sizeof(T));  // the library targets little-endian hosts (x86-64, arm64)
-  out.append(buf, sizeof(T));
-}
 
 [[noreturn]] void bad(const std::string& source, const std::string& what) {
   throw IoError(ErrorCode::BadMesh, Location{source}, what,
