@@ -197,10 +197,13 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
 
   const std::string advanced = "Advanced";
   app->add_option("--method", args->run.method,
-                  "all frames: rbf-project (default: frame after frame, RBF then projection on each frame's own "
-                  "surface), carry (every frame on its own, in parallel) or rbf (the paper's RBF only, a baseline)")
+                  "all frames: auto (default: rebuild where every frame's contours keep frame 0's topology, "
+                  "rbf-project where they change), rebuild (every frame its own surface on frame 0's mesh, in "
+                  "parallel), rbf-project (frame after frame, RBF then projection on each frame's own surface), "
+                  "carry (frame 0's mesh carried onto every frame, in parallel) or rbf (the paper's RBF only, a "
+                  "baseline)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"carry", "rbf-project", "rbf"}))
+      ->check(CLI::IsMember({"auto", "rebuild", "carry", "rbf-project", "rbf"}))
       ->group(advanced);
   app->add_option("--tiling", args->run.tiling,
                   "surface between slices: bands (default) or delaunay (Lim et al.'s projected constrained Delaunay, "

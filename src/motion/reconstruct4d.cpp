@@ -2,11 +2,13 @@
 #include "contour4d/motion/reconstruct4d.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <condition_variable>
 #include <exception>
 #include <map>
 #include <mutex>
 
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
@@ -71,6 +73,50 @@ MeshSequence carry_4d(const Sequence& seq, const Reconstruct4DOptions& options, 
   return out;
 }
 
+// The frames whose contours do not fit frame 0's plan (a contour that appears, vanishes, splits or merges):
+// the nearest rebuilt frame's mesh (in the cycle; the earlier one on a tie) carried onto the frame's own
+// surface (carry.h), each frame on its own.
+void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options,
+                 Reconstruct4DReport& rep) {
+  const std::vector<int>& unfit = rep.rebuild.unfit;
+  if (unfit.empty()) return;
+  const auto n = static_cast<int>(seq.frames.size());
+  auto nearest_fit = [&](int t) {
+    int best = -1, best_d = n + 1;
+    for (int s = 0; s < n; ++s) {
+      if (out.positions[static_cast<std::size_t>(s)].empty()) continue;
+      const int d = std::min(std::abs(s - t), n - std::abs(s - t));
+      if (d < best_d) {
+        best_d = d;
+        best = s;
+      }
+    }
+    return best;
+  };
+  std::vector<int> source(unfit.size());
+  for (std::size_t k = 0; k < unfit.size(); ++k) source[k] = nearest_fit(unfit[k]);
+  std::vector<std::exception_ptr> errors(unfit.size());
+  tbb::parallel_for(std::size_t{0}, unfit.size(), [&](std::size_t k) {
+    try {
+      const auto t = static_cast<std::size_t>(unfit[k]), s = static_cast<std::size_t>(source[k]);
+      Sequence pair = seq;
+      pair.frames = {seq.frames[s], seq.frames[t]};
+      SurfaceOptions own = options.surface;
+      own.geometry_only = true;
+      CarryReport cr;
+      MeshSequence two = carry_frames(
+          pair, TriangleMesh{out.positions[s], out.triangles},
+          [&](std::size_t) { return reconstruct_frame(seq, static_cast<int>(t), own); }, options.carry, &cr);
+      out.positions[t] = std::move(two.positions[1]);
+      rep.carry.frames[t] = cr.frames[1];
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
 }  // namespace
 
 MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& options, Reconstruct4DReport* report) {
@@ -80,6 +126,29 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   Reconstruct4DReport& rep = report ? *report : local;
   rep.surfaces.assign(n, {});
   // Frame 0 always; every frame when the morph projects onto each frame's own surface.
+  if (options.all_frames == AllFramesMethod::Auto || options.all_frames == AllFramesMethod::Rebuild) {
+    std::optional<MeshSequence> rebuilt =
+        rebuild_frames(seq, options.surface, &rep.rebuild, &rep.surfaces, [&](int done, int total) {
+          if (options.progress) options.progress("frames", done, total);
+        });
+    if (options.all_frames == AllFramesMethod::Rebuild && (!rebuilt || !rep.rebuild.unfit.empty()))
+      throw InvalidInput(
+          ErrorCode::Usage, Location{seq.source},
+          "every frame on frame 0's mesh is not possible: " +
+              (rebuilt ? "frame " + std::to_string(rep.rebuild.unfit[0]) + ": " + rep.rebuild.unfit_why[0]
+                       : rep.rebuild.why_not),
+          "use --method auto (the default), which carries frame 0's mesh where the contours change");
+    if (rebuilt) {
+      rep.used = AllFramesMethod::Rebuild;
+      rep.morph.frames.assign(n, {});
+      rep.carry.frames.assign(n, {});
+      carry_unfit(seq, *rebuilt, options, rep);
+      rep.morph.events = count_events(seq);
+      rep.morph.submeshes = submesh_lifetimes(seq);
+      return std::move(*rebuilt);
+    }
+    rep.surfaces.assign(n, {});
+  }
   const std::size_t ahead = options.morph.method == MorphMethod::RbfProject ? n : 1;  // frames [0, ahead)
   auto build = [&](std::size_t f) {
     SurfaceOptions so = options.surface;
@@ -92,7 +161,11 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
     }
     return reconstruct_frame(seq, static_cast<int>(f), so, &rep.surfaces[f]);
   };
-  if (options.all_frames == AllFramesMethod::Carry) return carry_4d(seq, options, rep, build);
+  if (options.all_frames == AllFramesMethod::Carry) {
+    rep.used = AllFramesMethod::Carry;
+    return carry_4d(seq, options, rep, build);
+  }
+  rep.used = AllFramesMethod::Morph;
   // The surfaces are built by tasks that take the frames in increasing order, while this thread morphs
   // (from frame 0's surface on) and builds a frame itself when the morph needs one nobody has taken yet:
   // the morph overlaps the building. Each surface depends on its frame only, so the result does not

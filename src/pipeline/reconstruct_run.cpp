@@ -12,6 +12,7 @@
 
 #include "contour4d/core/errors.h"
 #include "contour4d/io/mesh_output.h"
+#include "contour4d/metrics/quality.h"
 #include "contour4d/pipeline/structures.h"
 
 namespace c4d {
@@ -125,7 +126,10 @@ Reconstruct4DOptions library_options(const ReconstructRunOptions& a, const std::
   opt.surface.rows = a.tiling != "delaunay";
   opt.surface.tiling = a.tiling == "delaunay" ? Tiling::Delaunay : Tiling::Bands;
   opt.surface.caps = a.cap == "flat" ? CapStyle::Flat : (a.cap == "open" ? CapStyle::Open : CapStyle::Rounded);
-  opt.all_frames = a.method == "carry" ? AllFramesMethod::Carry : AllFramesMethod::Morph;
+  opt.all_frames = a.method == "carry"     ? AllFramesMethod::Carry
+                   : a.method == "auto"    ? AllFramesMethod::Auto
+                   : a.method == "rebuild" ? AllFramesMethod::Rebuild
+                                           : AllFramesMethod::Morph;
   opt.morph.method = a.method == "rbf" ? MorphMethod::Rbf : MorphMethod::RbfProject;
   opt.morph.vertical_deformation = a.vertical;
   return opt;
@@ -217,6 +221,46 @@ void one_frame(const ReconstructRunOptions& a, const Sequence& seq, const Recons
   report["frames"] = {{{"frame", a.frame}, {"surface", surface_json(sr)}}};
 }
 
+// Where frames were carried onto a changed topology, the result must also keep triangles this well shaped in
+// every frame (the share of angles in 40–80° and the smallest angle), else the morph is tried as well.
+constexpr double kCarriedMinShare4080 = 80.0;
+constexpr double kCarriedMinAngleDeg = 5.0;
+
+// The worst frame's triangle shape: the smallest share of angles in 40–80° (%) and the smallest angle (°).
+std::pair<double, double> worst_angles(const MeshSequence& m) {
+  double share = 100.0, smallest = 180.0;
+  for (std::size_t f = 0; f < m.positions.size(); ++f) {
+    const AngleQuality q = angle_quality(m.frame(f));
+    share = std::min(share, q.pct_40_80);
+    smallest = std::min(smallest, q.min_angle_deg);
+  }
+  return {share, smallest};
+}
+
+// The frames rebuilt on one mesh (rebuild.h) failed their checks, or frames carried where the contours change
+// left poor triangles: the frame-after-frame morph is tried, and its result replaces the rebuilt one if that
+// failed its checks, or if the morph's passes with better-shaped triangles (its smallest share of angles in
+// 40–80° larger).
+void morph_instead(const ReconstructRunOptions& a, const Sequence& seq, const Reconstruct4DOptions& opt, bool closed,
+                   ReconstructRun& run, Reconstruct4DReport& rr, Json& report, const RunMessage& say,
+                   const std::string& why) {
+  if (say) say(fmt::format("  the frames on one mesh {}; trying the frame-after-frame morph", why));
+  Reconstruct4DOptions morph = opt;
+  morph.all_frames = AllFramesMethod::Morph;
+  Reconstruct4DReport rm;
+  MeshSequence other = reconstruct_4d(seq, morph, &rm);
+  ResultCheck other_check = run_checks(a, seq, opt.surface.label, closed, other);
+  report["all_frames"]["rebuild_fault"] = why;
+  const bool better =
+      !run.check.ok() || (other_check.ok() && worst_angles(other).first > worst_angles(run.result).first);
+  if (!better) return;
+  run.result = std::move(other);
+  rm.rebuild = rr.rebuild;
+  rr = std::move(rm);
+  run.check = std::move(other_check);
+  report["all_frames"]["method"] = "morph";
+}
+
 // The default morph failed its checks: it can fold a frame onto a neighbouring sheet (a myocardium's two
 // walls). Every frame is then carried from frame 0 on its own, and that result replaces the morph's if it
 // passes the checks.
@@ -236,6 +280,18 @@ void carry_instead(const ReconstructRunOptions& a, const Sequence& seq, const Re
   rr = std::move(rc);
   run.check = std::move(other_check);
   report["options"]["method"] = "carry";
+  report["all_frames"]["method"] = "carry";
+}
+
+const char* all_frames_name(AllFramesMethod m) {
+  switch (m) {
+    case AllFramesMethod::Rebuild:
+      return "rebuild";
+    case AllFramesMethod::Carry:
+      return "carry";
+    default:
+      return "morph";
+  }
 }
 
 Json frames_json(const MeshSequence& result, const Reconstruct4DReport& rr) {
@@ -292,7 +348,27 @@ void all_frames(const ReconstructRunOptions& a, const Sequence& seq, const Recon
   Reconstruct4DReport rr;
   run.result = reconstruct_4d(seq, opt, &rr);
   run.check = run_checks(a, seq, opt.surface.label, closed, run.result);
-  if (!run.check.ok() && a.method == "rbf-project") carry_instead(a, seq, opt, closed, run, rr, report, say);
+  report["all_frames"] = {{"method", all_frames_name(rr.used)}, {"why_not_rebuilt", rr.rebuild.why_not}};
+  Json carried = Json::array();
+  for (std::size_t k = 0; k < rr.rebuild.unfit.size(); ++k)
+    carried.push_back({{"frame", rr.rebuild.unfit[k]}, {"why", rr.rebuild.unfit_why[k]}});
+  report["all_frames"]["carried_frames"] = carried;
+  if (say && rr.used != AllFramesMethod::Rebuild && a.method == "auto")
+    say(fmt::format("  frames deformed from frame 0's mesh ({})", rr.rebuild.why_not));
+  if (rr.used == AllFramesMethod::Rebuild && a.method == "auto") {
+    if (!run.check.ok()) {
+      morph_instead(a, seq, opt, closed, run, rr, report, say, "failed their checks (" + run.check.summary() + ")");
+    } else if (!rr.rebuild.unfit.empty()) {
+      const auto [share, smallest] = worst_angles(run.result);
+      if (share < kCarriedMinShare4080 || smallest < kCarriedMinAngleDeg)
+        morph_instead(a, seq, opt, closed, run, rr, report, say,
+                      fmt::format("have poorly shaped triangles where the contours change ({:.1f} % of angles in "
+                                  "40-80°, smallest {:.1f}°)",
+                                  share, smallest));
+    }
+  }
+  const bool morphed = rr.used == AllFramesMethod::Morph && (a.method == "rbf-project" || a.method == "auto");
+  if (!run.check.ok() && morphed) carry_instead(a, seq, opt, closed, run, rr, report, say);
   report["frames"] = frames_json(run.result, rr);
   describe_topology(rr, report, say);
 }
@@ -329,7 +405,7 @@ Json summary_json(const ReconstructRun& run, const InputResult& read, const Reco
   }
   s["correspondence"] = true;  // one triangle list for every frame, by construction
   s["checks_ok"] = run.check.ok();
-  s["method"] = report["options"]["method"];
+  s["method"] = report.contains("all_frames") ? report["all_frames"]["method"] : report["options"]["method"];
   s["repairs"] = read.repairs.size();
   s["units"] = "mm";
   s["space"] = read.sequence.space;

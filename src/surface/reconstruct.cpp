@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -30,8 +31,10 @@
 #include "contour4d/surface/fairing.h"
 #include "contour4d/surface/refine.h"
 #include "contour4d/surface/resample.h"
+#include "contour4d/metrics/surface_projector.h"
 #include "contour4d/metrics/surface_walk.h"
 #include "contour4d/metrics/topology.h"
+#include "contour4d/surface/surface_plan.h"
 #include "contour4d/surface/tiling.h"
 #include "surface_tuning_internal.h"
 
@@ -444,12 +447,86 @@ struct FrameWork {
   PairLinks pair_links;                   // per slice pair: linked node pairs
   std::vector<Triangle> to_remesh;        // band triangles left for remeshing (branchings)
   RemeshEngine engine = RemeshEngine::Cgal;
-  std::vector<char> fixed;        // per vertex: kept in place by fairing and remeshing
-  std::vector<char> keep_shape;   // per vertex: a dome vertex that keeps its shape
-  std::vector<double> row_scale;  // per vertex: the fairing row's scale (coarse caps)
-  std::vector<char> scale_aware;  // per vertex: its fairing term is scale-aware (ring caps)
-  std::vector<CapFill> fills;     // the Rounded caps to fill towards the sections' trend
+  std::vector<char> fixed;              // per vertex: kept in place by fairing and remeshing
+  std::vector<char> keep_shape;         // per vertex: a dome vertex that keeps its shape
+  std::vector<double> row_scale;        // per vertex: the fairing row's scale (coarse caps)
+  std::vector<char> scale_aware;        // per vertex: its fairing term is scale-aware (ring caps)
+  std::vector<CapFill> fills;           // the Rounded caps to fill towards the sections' trend
+  SurfacePlan* record = nullptr;        // filled with this frame's decisions (plan_surface)
+  const SurfacePlan* replay = nullptr;  // the decisions to follow instead (reconstruct_frame_on_plan)
+  std::size_t next_band = 0, next_cap = 0;
 };
+
+// A frame whose contours do not fit the plan it is built on (another topology).
+struct PlanMismatch {
+  std::string why;
+};
+
+// A cap in the plan: its interior points as mean-value coordinates over its loops, heights as shares of
+// the cap's height `height`.
+PlanCap plan_cap(const CapMesh& cap, const std::vector<std::vector<Vec2>>& loops, double height) {
+  PlanCap pc;
+  for (const auto& l : loops) pc.loop_points += l.size();
+  for (std::size_t k = pc.loop_points; k < cap.points.size(); ++k) {
+    pc.weights.push_back(mean_value_weights(cap.points[k], loops));
+    pc.height.push_back(height > 0 ? cap.height[k] / height : 0.0);
+  }
+  pc.triangles = cap.triangles;
+  return pc;
+}
+
+// The plan's next cap on this frame's loops.
+CapMesh cap_on_plan(FrameWork& fw, const std::vector<std::vector<Vec2>>& loops, double height) {
+  if (fw.next_cap >= fw.replay->caps.size()) throw PlanMismatch{"more caps than the plan's frame"};
+  const PlanCap& pc = fw.replay->caps[fw.next_cap++];
+  CapMesh cap;
+  for (const auto& l : loops) cap.points.insert(cap.points.end(), l.begin(), l.end());
+  if (cap.points.size() != pc.loop_points) throw PlanMismatch{"a cap's loops differ from the plan's frame"};
+  cap.height.assign(cap.points.size(), 0.0);
+  for (std::size_t k = 0; k < pc.weights.size(); ++k) {
+    Vec2 p;
+    for (std::size_t i = 0; i < pc.loop_points; ++i) p = p + pc.weights[k][i] * cap.points[i];
+    cap.points.push_back(p);
+    cap.height.push_back(pc.height[k] * height);
+  }
+  cap.triangles = pc.triangles;
+  return cap;
+}
+
+// The plan's matching of one slice's contours: for each plan node of slice s (in order), the index of the
+// frame's contour (same nesting depth, nearest centroids first).
+std::vector<int> match_to_plan(const SurfacePlan& plan, int s, const std::vector<std::vector<Vec2>>& canon,
+                               const std::vector<int>& depth) {
+  std::vector<int> plan_nodes;
+  for (std::size_t k = 0; k < plan.nodes.size(); ++k)
+    if (plan.nodes[k].slice == s) plan_nodes.push_back(static_cast<int>(k));
+  if (plan_nodes.size() != canon.size())
+    throw PlanMismatch{fmt::format("slice {}: {} contours, the plan's frame has {}", plan.slice_ids[s], canon.size(),
+                                   plan_nodes.size())};
+  std::vector<std::tuple<double, int, int>> pairs;  // distance, plan position, contour
+  for (std::size_t a = 0; a < plan_nodes.size(); ++a)
+    for (std::size_t c = 0; c < canon.size(); ++c) {
+      const PlanNode& pn = plan.nodes[static_cast<std::size_t>(plan_nodes[a])];
+      if (pn.depth != depth[c]) continue;
+      Vec2 centre;
+      for (const Vec2& p : canon[c]) centre = centre + p;
+      centre = (1.0 / static_cast<double>(canon[c].size())) * centre;
+      pairs.emplace_back(norm(centre - pn.centroid), static_cast<int>(a), static_cast<int>(c));
+    }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<int> out(plan_nodes.size(), -1);
+  std::vector<char> used(canon.size(), 0);
+  for (const auto& [d, a, c] : pairs)
+    if (out[static_cast<std::size_t>(a)] < 0 && !used[static_cast<std::size_t>(c)]) {
+      out[static_cast<std::size_t>(a)] = c;
+      used[static_cast<std::size_t>(c)] = 1;
+    }
+  for (int c : out)
+    if (c < 0)
+      throw PlanMismatch{
+          fmt::format("slice {}: the contours' nesting differs from the plan's frame", plan.slice_ids[s])};
+  return out;
+}
 
 // Step 1: the structure to build (SurfaceOptions::label, or the only one present).
 std::string choose_label(const Frame& f, const detail::SurfaceParams& opt, const Location& loc) {
@@ -511,6 +588,18 @@ void filter_frame(FrameWork& fw, const Sequence& seq, const Frame& f, const std:
   fw.links = intra_frame_connections(sub, 0, copt);
 
   fw.frame2d = canonical_frame(sub);
+  if (fw.replay) {  // the plan's in-plane frame: the same local coordinates in every frame
+    fw.frame2d.centre = fw.replay->centre;
+    fw.frame2d.axis = fw.replay->axis;
+    std::vector<int> ids;
+    for (const Slice& sl : ff.slices) ids.push_back(sl.id);
+    if (ids != fw.replay->slice_ids) throw PlanMismatch{"the structure's slices differ from the plan's frame"};
+  }
+  if (fw.record) {
+    fw.record->centre = fw.frame2d.centre;
+    fw.record->axis = fw.frame2d.axis;
+    for (const Slice& sl : ff.slices) fw.record->slice_ids.push_back(sl.id);
+  }
 }
 
 // Step 3: canonical, resampled contours and their vertices, in a local frame.
@@ -557,14 +646,35 @@ void canonical_contours(FrameWork& fw) {
     for (std::size_t c = 0; c < raw.size(); ++c) area[c] = std::abs(signed_area(raw[c]));
     std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return area[x] > area[y]; });
     node_of[s].assign(raw.size(), -1);
-    for (int c : order) {
+    std::vector<std::vector<Vec2>> canon;
+    for (std::size_t c = 0; c < raw.size(); ++c) canon.push_back(canonical_polygon(raw[c], depth[c] % 2 == 0));
+    std::vector<int> plan_match;  // replay: the contour of each of the slice's plan nodes
+    if (fw.replay) {
+      plan_match = match_to_plan(*fw.replay, static_cast<int>(s), canon, depth);
+      order = plan_match;
+    }
+    for (std::size_t o = 0; o < order.size(); ++o) {
+      const int c = order[o];
       Node n;
       n.slice = static_cast<int>(s);
       n.input_index = original_index[s][c];
       n.depth = depth[c];
-      n.poly = resample_closed(canonical_polygon(raw[c], depth[c] % 2 == 0), ropt);
+      if (fw.replay)
+        n.poly = aligned_samples(canon[c], fw.replay->nodes[nodes.size()].reference);
+      else
+        n.poly = resample_closed(canon[c], ropt);
       for (Vec2& q : n.poly) q = snap(q);
+      if (fw.record && n.poly.size() >= 3) {
+        PlanNode pn;
+        pn.slice = static_cast<int>(s);
+        pn.depth = n.depth;
+        for (const Vec2& p : canon[c]) pn.centroid = pn.centroid + p;
+        pn.centroid = (1.0 / static_cast<double>(canon[c].size())) * pn.centroid;
+        pn.reference = resample_count(canon[c], n.poly.size());
+        fw.record->nodes.push_back(std::move(pn));
+      }
       if (n.poly.size() < 3) {
+        if (fw.replay) throw PlanMismatch{fmt::format("slice {}: a contour too small to sample", si.slice->id)};
         rep.warnings.push_back("slice " + std::to_string(si.slice->id) + " contour " + std::to_string(n.input_index) +
                                ": fewer than 3 distinct points, skipped");
         continue;
@@ -615,6 +725,16 @@ void link_nodes(FrameWork& fw, int frame) {
     nodes[sa < sb ? na : nb].linked_up = true;
     nodes[sa < sb ? nb : na].linked_down = true;
   }
+  if (fw.replay) {  // the same links as the plan's frame, in its order
+    auto sorted = [](PairLinks p) {
+      for (auto& v : p) std::sort(v.begin(), v.end());
+      return p;
+    };
+    if (sorted(pair_links) != sorted(fw.replay->links))
+      throw PlanMismatch{"the connectivity between slices differs from the plan's frame"};
+    pair_links = fw.replay->links;
+  }
+  if (fw.record) fw.record->links = pair_links;
 }
 
 // Step 5a: the paper's tiling of one linked group of a slice pair: the constrained Delaunay triangulation of
@@ -753,7 +873,15 @@ void tile_walls(FrameWork& fw) {
       if (opt.rows && lower.size() == 1 && upper.size() == 1) {
         // Rows between the two contours, tiled pairwise: well-shaped triangles without remeshing.
         const double spacing = opt.row_spacing > 0 ? opt.row_spacing : opt.edge;
-        const auto rows = interpolate_rows(lc, uc, b.positions, spacing);
+        RowPlan row_plan;
+        if (fw.replay) {
+          if (fw.next_band >= fw.replay->bands.size()) throw PlanMismatch{"more bands than the plan's frame"};
+          row_plan = fw.replay->bands[fw.next_band++];
+        } else {
+          row_plan = plan_rows(lc, uc, b.positions, spacing);
+        }
+        if (fw.record) fw.record->bands.push_back(row_plan);
+        const auto rows = rows_on_plan(row_plan, lc, uc, b.positions);
         if (!rows.empty()) {
           std::vector<std::uint32_t> prev = lc;
           for (std::size_t row = 0; row <= rows.size(); ++row) {
@@ -762,8 +890,10 @@ void tile_walls(FrameWork& fw) {
               for (const Vec3& p : rows[row]) next.push_back(b.add(p));
             else
               next = uc;
-            const auto tris = tile_chains(prev, next, b.positions);
-            b.triangles.insert(b.triangles.end(), tris.begin(), tris.end());
+            if (!fw.replay) {  // a replay takes the plan's triangles
+              const auto tris = tile_chains(prev, next, b.positions);
+              b.triangles.insert(b.triangles.end(), tris.begin(), tris.end());
+            }
             prev = std::move(next);
           }
           continue;
@@ -904,7 +1034,9 @@ void add_caps(FrameWork& fw) {
           cop.far_scale = 1.0;
           cop.uniform_scale = ring ? kRingCapScale : kUniformCapScale;
         }
-        const CapMesh cap = cap_of_slice(loops, opt.caps, cop, loc, slices[s].slice->id);
+        const CapMesh cap = fw.replay ? cap_on_plan(fw, loops, cop.height)
+                                      : cap_of_slice(loops, opt.caps, cop, loc, slices[s].slice->id);
+        if (fw.record) fw.record->caps.push_back(plan_cap(cap, loops, cop.height));
         std::vector<std::uint32_t> id;
         for (int g : group) id.insert(id.end(), nodes[g].chain.begin(), nodes[g].chain.end());
         const double dir = top ? 1.0 : -1.0;
@@ -951,6 +1083,18 @@ void add_caps(FrameWork& fw) {
         ++rep.caps;
       }
     }
+  if (fw.record) {
+    SurfacePlan& plan = *fw.record;
+    if (rep.branchings > 0) plan.unusable = "contours branch between slices";
+    if (!fw.to_remesh.empty()) plan.unusable = "a band is remeshed";
+    plan.triangles = b.triangles;
+    plan.vertices = b.positions.size();
+    plan.contour_vertices = fw.contour_vertices;
+  }
+  if (fw.replay) {
+    if (b.positions.size() != fw.replay->vertices) throw PlanMismatch{"the vertex count differs from the plan's frame"};
+    b.triangles = fw.replay->triangles;
+  }
 }
 
 // Step 8: the tiled surface faired and smoothed (free vertices), held within the caps' reach, its
@@ -978,7 +1122,7 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
                            " non-manifold edges, " + std::to_string(coarse.nonmanifold_vertices) +
                            " non-manifold vertices); fairing and smoothing skipped");
   bool moved = false;
-  if (manifold && opt.fairing) {
+  if (manifold && opt.fairing && !(fw.replay && std::getenv("C4D_NOFAIR"))) {
     FairingOptions fo;
     fo.shape_weight = 1.0;
     if (!row_scale.empty()) {
@@ -1100,6 +1244,99 @@ TriangleMesh finish(FrameWork& fw, TriangleMesh& mesh) {
   return out;
 }
 
+// The plan's final mesh (after the final remeshing and the small-angle repair of the plan's frame) as its
+// contour vertices first, in the faired mesh's order, then every other vertex by its triangle and barycentric
+// coordinates on the faired mesh (plan.embedding). `mesh` is reordered that way.
+void record_final(SurfacePlan& plan, const TriangleMesh& faired, TriangleMesh& mesh) {
+  std::map<std::tuple<double, double, double>, std::uint32_t> contour_at;
+  for (std::uint32_t v = 0; v < plan.contour_vertices; ++v)
+    contour_at[{faired.positions[v].x, faired.positions[v].y, faired.positions[v].z}] = v;
+  std::vector<char> used(mesh.positions.size(), 0);
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t v : t) used[v] = 1;
+  const auto n_contour = static_cast<std::uint32_t>(plan.contour_vertices);
+  std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);
+  std::vector<Vec3> positions(plan.contour_vertices);
+  const SurfaceProjector surface(faired);
+  std::int32_t hint = -1;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (!used[v]) continue;
+    const Vec3 p = mesh.positions[v];
+    const auto it = contour_at.find({p.x, p.y, p.z});
+    if (it != contour_at.end()) {
+      remap[v] = it->second;
+      positions[it->second] = p;
+      continue;
+    }
+    remap[v] = static_cast<std::uint32_t>(positions.size());
+    positions.push_back(p);
+    surface.closest(p, nullptr, &hint);
+    const std::int32_t tri = surface.mesh_triangle(hint);
+    PlanPoint e;
+    e.triangle = static_cast<std::uint32_t>(std::max(tri, 0));
+    const Triangle& t = faired.triangles[e.triangle];
+    e.weights = barycentric(p, faired.positions[t[0]], faired.positions[t[1]], faired.positions[t[2]]);
+    plan.embedding.push_back(e);
+  }
+  for (std::uint32_t c = 0; c < n_contour; ++c)
+    if (std::find(remap.begin(), remap.end(), c) == remap.end())
+      plan.unusable = "the final remeshing dropped a contour vertex";
+  for (Triangle& t : mesh.triangles)
+    for (std::uint32_t& v : t) v = remap[v];
+  mesh.positions = std::move(positions);
+  plan.final_triangles = mesh.triangles;
+}
+
+// The plan's final mesh on this frame's faired mesh (record_final's embedding).
+TriangleMesh final_on_plan(const SurfacePlan& plan, const TriangleMesh& faired) {
+  TriangleMesh out;
+  out.positions.assign(faired.positions.begin(),
+                       faired.positions.begin() + static_cast<std::ptrdiff_t>(plan.contour_vertices));
+  for (const PlanPoint& e : plan.embedding) {
+    const Triangle& t = faired.triangles[e.triangle];
+    out.positions.push_back(e.weights[0] * faired.positions[t[0]] + e.weights[1] * faired.positions[t[1]] +
+                            e.weights[2] * faired.positions[t[2]]);
+  }
+  out.triangles = plan.final_triangles;
+  return out;
+}
+
+// Every step on one frame (up to the caps only when `until_caps`: what a plan records).
+TriangleMesh run_steps(FrameWork& fw, const Sequence& seq, int frame, bool until_caps) {
+  const detail::SurfaceParams& opt = fw.opt;
+  Location loc;
+  loc.file = seq.source;
+  loc.frame = frame;
+  if (frame < 0 || frame >= static_cast<int>(seq.frames.size()))
+    throw InvalidInput(ErrorCode::Usage, loc,
+                       "frame " + std::to_string(frame) + " does not exist (the input has " +
+                           std::to_string(seq.frames.size()) + " frames)",
+                       "pick a frame from 0 to the frame count - 1");
+  if (!(opt.edge > 0) || !std::isfinite(opt.edge))
+    throw InvalidInput(ErrorCode::Usage, loc, "the target edge length must be a positive number of mm",
+                       "use e.g. --edge 1.0");
+  const Frame& f = seq.frames[static_cast<std::size_t>(frame)];
+  fw.loc = loc;
+  filter_frame(fw, seq, f, choose_label(f, opt, loc));
+  canonical_contours(fw);
+  link_nodes(fw, frame);
+  tile_walls(fw);
+  remesh_branch_bands(fw);
+  add_caps(fw);
+  if (until_caps) return {};
+  bool manifold = false;
+  TriangleMesh mesh = fair(fw, manifold);
+  if (fw.replay) {  // the plan's final mesh on this frame's faired surface; nothing else moves
+    TriangleMesh out = final_on_plan(*fw.replay, mesh);
+    return finish(fw, out);
+  }
+  const TriangleMesh faired = fw.record ? mesh : TriangleMesh{};
+  const auto constrained = remesh_final(fw, mesh, manifold);
+  repair_angles(fw, mesh, constrained, manifold);
+  if (fw.record) record_final(*fw.record, faired, mesh);
+  return finish(fw, mesh);
+}
+
 }  // namespace
 
 namespace detail {
@@ -1119,34 +1356,8 @@ SurfaceParams surface_params(const SurfaceOptions& options, const SurfaceTuning&
 }
 
 TriangleMesh reconstruct_frame_tuned(const Sequence& seq, int frame, const SurfaceParams& opt, SurfaceReport* report) {
-  SurfaceReport rep;
-  Location loc;
-  loc.file = seq.source;
-  loc.frame = frame;
-  if (frame < 0 || frame >= static_cast<int>(seq.frames.size()))
-    throw InvalidInput(ErrorCode::Usage, loc,
-                       "frame " + std::to_string(frame) + " does not exist (the input has " +
-                           std::to_string(seq.frames.size()) + " frames)",
-                       "pick a frame from 0 to the frame count - 1");
-  if (!(opt.edge > 0) || !std::isfinite(opt.edge))
-    throw InvalidInput(ErrorCode::Usage, loc, "the target edge length must be a positive number of mm",
-                       "use e.g. --edge 1.0");
-  const Frame& f = seq.frames[static_cast<std::size_t>(frame)];
-
   FrameWork fw(opt);
-  fw.loc = loc;
-  fw.rep = std::move(rep);
-  filter_frame(fw, seq, f, choose_label(f, opt, loc));
-  canonical_contours(fw);
-  link_nodes(fw, frame);
-  tile_walls(fw);
-  remesh_branch_bands(fw);
-  add_caps(fw);
-  bool manifold = false;
-  TriangleMesh mesh = fair(fw, manifold);
-  const auto constrained = remesh_final(fw, mesh, manifold);
-  repair_angles(fw, mesh, constrained, manifold);
-  TriangleMesh out = finish(fw, mesh);
+  TriangleMesh out = run_steps(fw, seq, frame, false);
   if (report) *report = std::move(fw.rep);
   return out;
 }
@@ -1155,6 +1366,37 @@ TriangleMesh reconstruct_frame_tuned(const Sequence& seq, int frame, const Surfa
 
 TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& options, SurfaceReport* report) {
   return detail::reconstruct_frame_tuned(seq, frame, detail::surface_params(options), report);
+}
+
+SurfacePlan plan_surface(const Sequence& seq, int frame, const SurfaceOptions& options) {
+  SurfacePlan plan;
+  const detail::SurfaceParams opt = detail::surface_params(options);
+  FrameWork fw(opt);
+  fw.record = &plan;
+  run_steps(fw, seq, frame, false);
+  if (!options.rows || options.geometry_only) plan.unusable = "the bands are remeshed (rows off)";
+  if (options.tiling != Tiling::Bands) plan.unusable = "the Delaunay tiling";
+  return plan;
+}
+
+std::optional<TriangleMesh> reconstruct_frame_on_plan(const Sequence& seq, int frame, const SurfaceOptions& options,
+                                                      const SurfacePlan& plan, SurfaceReport* report,
+                                                      std::string* why_not) {
+  if (!plan.unusable.empty()) {
+    if (why_not) *why_not = plan.unusable;
+    return std::nullopt;
+  }
+  const detail::SurfaceParams opt = detail::surface_params(options);
+  FrameWork fw(opt);
+  fw.replay = &plan;
+  try {
+    TriangleMesh out = run_steps(fw, seq, frame, false);
+    if (report) *report = std::move(fw.rep);
+    return out;
+  } catch (const PlanMismatch& m) {
+    if (why_not) *why_not = m.why;
+    return std::nullopt;
+  }
 }
 
 }  // namespace c4d

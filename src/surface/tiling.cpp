@@ -222,37 +222,51 @@ std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const
   return out;
 }
 
-std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>& lower,
-                                                const std::vector<std::uint32_t>& upper,
-                                                const std::vector<Vec3>& positions, double spacing) {
-  std::vector<std::vector<Vec3>> rows;
+RowPlan plan_rows(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                  const std::vector<Vec3>& positions, double spacing) {
+  RowPlan plan;
   const std::size_t n = lower.size(), m = upper.size();
-  if (n < 3 || m < 3 || !(spacing > 0)) return rows;
+  if (n < 3 || m < 3 || !(spacing > 0)) return plan;
   const BandPath path = band_path(lower, upper, positions);
-  if (path.states.empty()) return rows;
+  if (path.states.empty()) return plan;
   const std::size_t spans = path.states.size() - 1;  // n + m spanning edges, the last equals the first
+  plan.i0 = path.i0;
+  plan.j0 = path.j0;
+  for (std::size_t k = 0; k < spans; ++k)
+    plan.spans.emplace_back(static_cast<std::uint32_t>(path.states[k].first),
+                            static_cast<std::uint32_t>(path.states[k].second));
   // The band's width across: its spanning edges' mean length (the slant height, not the slices' gap: a
   // band between contours of very different size lies nearly flat).
   double across = 0.0;
-  for (std::size_t k = 0; k < spans; ++k) {
-    const auto [i, j] = path.states[k];
-    across += distance(positions[lower[(path.i0 + i) % n]], positions[upper[(path.j0 + j) % m]]);
+  for (const auto& [i, j] : plan.spans)
+    across += distance(positions[lower[(plan.i0 + i) % n]], positions[upper[(plan.j0 + j) % m]]);
+  plan.intervals = static_cast<int>(std::lround(across / static_cast<double>(spans) / spacing));
+  for (int r = 1; r < plan.intervals; ++r) {
+    const double t = static_cast<double>(r) / plan.intervals;
+    plan.counts.push_back(std::max<std::size_t>(
+        3, static_cast<std::size_t>(std::lround((1.0 - t) * static_cast<double>(n) + t * static_cast<double>(m)))));
   }
-  const int intervals = static_cast<int>(std::lround(across / static_cast<double>(spans) / spacing));
-  if (intervals < 2) return rows;
-  for (int r = 1; r < intervals; ++r) {
-    const double t = static_cast<double>(r) / intervals;
+  return plan;
+}
+
+std::vector<std::vector<Vec3>> rows_on_plan(const RowPlan& plan, const std::vector<std::uint32_t>& lower,
+                                            const std::vector<std::uint32_t>& upper,
+                                            const std::vector<Vec3>& positions) {
+  std::vector<std::vector<Vec3>> rows;
+  const std::size_t n = lower.size(), m = upper.size(), spans = plan.spans.size();
+  if (plan.intervals < 2 || spans < 2) return rows;
+  for (int r = 1; r < plan.intervals; ++r) {
+    const double t = static_cast<double>(r) / plan.intervals;
     std::vector<Vec3> q(spans);
     std::vector<double> cum(spans + 1, 0.0);
     for (std::size_t k = 0; k < spans; ++k) {
-      const auto [i, j] = path.states[k];
-      q[k] = (1.0 - t) * positions[lower[(path.i0 + i) % n]] + t * positions[upper[(path.j0 + j) % m]];
+      const auto [i, j] = plan.spans[k];
+      q[k] = (1.0 - t) * positions[lower[(plan.i0 + i) % n]] + t * positions[upper[(plan.j0 + j) % m]];
       if (k > 0) cum[k] = cum[k - 1] + distance(q[k - 1], q[k]);
     }
     cum[spans] = cum[spans - 1] + distance(q[spans - 1], q[0]);
     const double total = cum[spans];
-    const std::size_t count = std::max<std::size_t>(
-        3, static_cast<std::size_t>(std::lround((1.0 - t) * static_cast<double>(n) + t * static_cast<double>(m))));
+    const std::size_t count = plan.counts[static_cast<std::size_t>(r - 1)];
     std::vector<Vec3> row;
     row.reserve(count);
     std::size_t seg = 0;
@@ -266,6 +280,12 @@ std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>
     rows.push_back(std::move(row));
   }
   return rows;
+}
+
+std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>& lower,
+                                                const std::vector<std::uint32_t>& upper,
+                                                const std::vector<Vec3>& positions, double spacing) {
+  return rows_on_plan(plan_rows(lower, upper, positions, spacing), lower, upper, positions);
 }
 
 std::vector<std::uint32_t> bridge_chains(const std::vector<std::uint32_t>& a, std::size_t x_at,

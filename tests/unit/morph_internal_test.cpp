@@ -69,7 +69,9 @@ bool same_bits(const MeshSequence& a, const MeshSequence& b) {
 // bit for bit (so the comparisons below measure the library's morph).
 TEST(MorphInternal, MorphStepsRunAsReconstruct4D) {
   const Phantom p = small_ellipsoid();
-  EXPECT_TRUE(same_bits(morph(p.contours, morph_inputs(p.contours), {}), reconstruct_4d(p.contours)));
+  Reconstruct4DOptions o;
+  o.all_frames = AllFramesMethod::Morph;
+  EXPECT_TRUE(same_bits(morph(p.contours, morph_inputs(p.contours), {}), reconstruct_4d(p.contours, o)));
 }
 
 // Frame-0 contour vertices slide along the later frames' contours (MorphSteps::slide_spacing): the

@@ -10,20 +10,23 @@
 #include "contour4d/core/stack.h"
 #include "contour4d/motion/carry.h"
 #include "contour4d/motion/morph.h"
+#include "contour4d/motion/rebuild.h"
 #include "contour4d/surface/reconstruct.h"
 
 namespace c4d {
 
 //! How frames after 0 are built.
 enum class AllFramesMethod {
-  Carry,  //!< every frame on its own from frame 0's mesh onto the frame's own surface (carry.h): in parallel
-  Morph,  //!< frame after frame, each from the one before (morph.h; MorphOptions::method picks the paper's RBF)
+  Auto,     //!< Rebuild where the contours keep their topology through the cycle, Morph otherwise
+  Rebuild,  //!< every frame its own surface on frame 0's plan (rebuild.h); refused where topology changes
+  Carry,    //!< every frame on its own from frame 0's mesh onto the frame's own surface (carry.h): in parallel
+  Morph,    //!< frame after frame, each from the one before (morph.h; MorphOptions::method picks the paper's RBF)
 };
 
 //! Options of the 4D reconstruction.
 struct Reconstruct4DOptions {
-  AllFramesMethod all_frames = AllFramesMethod::Morph;  //!< the all-frames stage
-  CarryOptions carry;                                   //!< AllFramesMethod::Carry
+  AllFramesMethod all_frames = AllFramesMethod::Auto;  //!< the all-frames stage
+  CarryOptions carry;                                  //!< AllFramesMethod::Carry
   SurfaceOptions surface;  //!< the one-frame surface. Frame 0's, the carried mesh, is built with remeshed bands
                            //!< (ours) and the morph's small-angle target (32°): it starts with even triangles
                            //!< where the morph keeps them; the later frames' surfaces are projection targets
@@ -35,8 +38,10 @@ struct Reconstruct4DOptions {
 //! What reconstruct_4d did.
 struct Reconstruct4DReport {
   std::vector<SurfaceReport> surfaces;  //!< per frame (the frame's own surface)
-  MorphReport morph;  //!< AllFramesMethod::Carry fills its frames' matched counts, events and sub-meshes
-  CarryReport carry;  //!< AllFramesMethod::Carry
+  MorphReport morph;      //!< AllFramesMethod::Carry fills its frames' matched counts, events and sub-meshes
+  CarryReport carry;      //!< AllFramesMethod::Carry
+  RebuildReport rebuild;  //!< AllFramesMethod::Auto and Rebuild: why the frames were not rebuilt, if they were not
+  AllFramesMethod used = AllFramesMethod::Morph;  //!< the stage that made the result (Rebuild, Carry or Morph)
 };
 
 //! Builds the 4D mesh of `seq` (one label). Frames' own surfaces are built by TBB tasks in frame order

@@ -24,10 +24,11 @@ struct ReconstructRunOptions {
   std::string label;                    //!< [--label] the structure (contour inputs; label images select on reading)
   double edge = SurfaceOptions{}.edge;  //!< [--edge] target edge length (mm)
   std::string cap = "rounded";          //!< [--cap] end caps: "rounded", "flat" or "open"
-  std::string method = "rbf-project";   //!< [--method] all frames: "rbf-project", "carry" or "rbf" (the paper's)
-  int threads = 0;                      //!< [--threads] worker threads, 0: all cores; the output does not depend on it
-  bool vertical = false;                //!< [--vertical-deformation] Lim et al.'s vertical deformation
-  std::string tiling = "bands";         //!< [--tiling] "bands" or "delaunay" (Lim et al.'s)
+  std::string method =
+      "auto";             //!< [--method] all frames: "auto", "rebuild", "rbf-project", "carry" or "rbf" (the paper's)
+  int threads = 0;        //!< [--threads] worker threads, 0: all cores; the output does not depend on it
+  bool vertical = false;  //!< [--vertical-deformation] Lim et al.'s vertical deformation
+  std::string tiling = "bands";                                     //!< [--tiling] "bands" or "delaunay" (Lim et al.'s)
   double volume_tolerance = ResultCheckOptions{}.volume_tolerance;  //!< [--volume-tolerance] output check
 };
 

@@ -4,6 +4,7 @@
 //! the First Cardiac Frame"): canonical resampled contours → tree-based connectivity → tiling
 //! between connected contours (rows; branching bridges) → caps → thin-plate fairing with the contours fixed.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "contour4d/surface/angle_repair.h"
 #include "contour4d/surface/capping.h"
 #include "contour4d/surface/refine.h"
+#include "contour4d/surface/surface_plan.h"
 
 namespace c4d {
 
@@ -72,5 +74,22 @@ struct SurfaceReport {
 //! several labels and none was chosen.
 TriangleMesh reconstruct_frame(const Sequence& seq, int frame, const SurfaceOptions& options = {},
                                SurfaceReport* report = nullptr);
+
+//! The plan of frame `frame`'s surface (surface_plan.h): its counts and triangles with `options`, the final
+//! remeshing and edge flips left out (they would tie the triangles to this frame's geometry). The plan is
+//! unusable (SurfacePlan::unusable says why) where contours branch between slices, with the Delaunay tiling
+//! or without rows.
+//! \throw InvalidInput as reconstruct_frame.
+SurfacePlan plan_surface(const Sequence& seq, int frame, const SurfaceOptions& options = {});
+
+//! Frame `frame`'s own surface built on `plan`: the plan's vertices and triangles, this frame's geometry
+//! (contours sampled at the plan's counts from matched starts, rows along the plan's spanning edges, caps by
+//! mean-value coordinates, then fairing, filling and the small-angle repair, which only move vertices).
+//! std::nullopt when the frame's contours do not fit the plan (other slices, contour counts, nesting or
+//! links; `why_not` says which) or the plan is unusable.
+//! \throw InvalidInput as reconstruct_frame.
+std::optional<TriangleMesh> reconstruct_frame_on_plan(const Sequence& seq, int frame, const SurfaceOptions& options,
+                                                      const SurfacePlan& plan, SurfaceReport* report = nullptr,
+                                                      std::string* why_not = nullptr);
 
 }  // namespace c4d

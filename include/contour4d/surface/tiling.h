@@ -5,7 +5,9 @@
 //! branching of Meyers, Skinner & Sloan 1992), and the bridges that merge several contours into one
 //! chain for 1→n and n→1 branching.
 
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "contour4d/core/mesh.h"
@@ -39,6 +41,25 @@ std::vector<Triangle> tile_chains(const std::vector<std::uint32_t>& lower, const
 std::vector<std::vector<Vec3>> interpolate_rows(const std::vector<std::uint32_t>& lower,
                                                 const std::vector<std::uint32_t>& upper,
                                                 const std::vector<Vec3>& positions, double spacing);
+
+//! How interpolate_rows cut one band: the optimal tiling's spanning edges (lower index (i0 + i) mod n,
+//! upper (j0 + j) mod m) and each row's point count. Replayed on chains of the same sizes in another
+//! frame (rows_on_plan), it gives rows of the same counts: the same mesh, that frame's geometry.
+struct RowPlan {
+  std::size_t i0 = 0, j0 = 0;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> spans;  //!< (i, j) of each spanning edge, the last one excluded
+  int intervals = 0;                                           //!< layers across the band; < 2: no rows
+  std::vector<std::size_t> counts;                             //!< points of row r (intervals − 1 rows)
+};
+
+//! The plan interpolate_rows follows for these chains (intervals < 2 and no counts when it makes no rows).
+RowPlan plan_rows(const std::vector<std::uint32_t>& lower, const std::vector<std::uint32_t>& upper,
+                  const std::vector<Vec3>& positions, double spacing);
+
+//! The rows of `plan` between chains of the sizes it was made for, at these positions.
+std::vector<std::vector<Vec3>> rows_on_plan(const RowPlan& plan, const std::vector<std::uint32_t>& lower,
+                                            const std::vector<std::uint32_t>& upper,
+                                            const std::vector<Vec3>& positions);
 
 //! Merges closed chain `b` into closed chain `a` through a bridge between their closest vertices
 //! (positions compared as given). `bridge` are the vertex ids of the bridge interior from a's side

@@ -1,0 +1,153 @@
+// All frames, each its own surface on one mesh (rebuild.h): Miara et al. §III.D's base mesh with per-frame
+// geometry, where the base mesh is frame 0's surface plan and each frame's geometry its own one-frame surface.
+#include "contour4d/motion/rebuild.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <limits>
+#include <map>
+#include <mutex>
+
+#include <fmt/format.h>
+
+#include <tbb/parallel_for.h>
+
+#include "contour4d/core/contour.h"
+#include "contour4d/core/normals.h"
+#include "contour4d/metrics/surface_projector.h"
+#include "contour4d/metrics/topology.h"
+#include "contour4d/surface/angle_repair.h"
+
+namespace c4d {
+
+namespace {
+
+// How far (in target edges) and how steeply (cosine of the normals' angle) a rebuilt vertex may move onto
+// the frame's own surface: the plan's counts give that surface up to its discretisation (a tenth of a mm
+// on real data), so a longer move or a surface facing another way is another sheet, and the vertex stays.
+constexpr double kMaxMoveEdges = 3.0;
+constexpr double kMinNormalCos = 0.5;
+constexpr int kUntangleRounds = 8;  // rounds of 10 umbrella steps where triangles cross
+
+// The rebuilt frame on its own one-frame surface: the free (non-contour) vertices projected onto it (a move
+// of at most kMaxMoveEdges edges onto a part facing the vertex's way, else the vertex stays), then the
+// small-angle repair within it; where triangles still cross, the local untangling and the repair again.
+// Returns the crossing triangle pairs left (0: none).
+std::size_t settle_on_own(TriangleMesh& mesh, std::size_t contour_vertices, const TriangleMesh& own, double edge,
+                          double angle_target_deg) {
+  const SurfaceProjector surface(own);
+  if (surface.empty()) return 0;
+  std::vector<Vec3>& x = mesh.positions;
+  const std::vector<Vec3> normals = area_weighted_normals(x, mesh.triangles, Vec3{});
+  std::vector<std::int32_t> hints(x.size(), -1);
+  std::int32_t hint = -1;
+  for (std::size_t v = contour_vertices; v < x.size(); ++v) {
+    Vec3 n;
+    const Vec3 q = surface.closest(x[v], &n, &hint);
+    hints[v] = hint;
+    if (distance(q, x[v]) <= kMaxMoveEdges * edge && dot(n, normals[v]) >= kMinNormalCos) x[v] = q;
+  }
+  std::vector<char> fixed(x.size(), 0);
+  std::fill(fixed.begin(), fixed.begin() + static_cast<std::ptrdiff_t>(contour_vertices), 1);
+  const SurfaceSnap snap = [&](std::uint32_t v, Vec3 p) { return surface.closest(p, nullptr, &hints[v]); };
+  AngleRepairOptions repair;
+  repair.target_deg = angle_target_deg;
+  repair_small_angles(x, mesh.triangles, fixed, snap, repair);
+  const TopologyOptions exact{.self_intersections = true, .counts_only = true};
+  if (check_topology(mesh, exact).self_intersections == 0) return 0;
+  untangle(x, mesh.triangles, fixed, snap, kUntangleRounds);
+  repair_small_angles(x, mesh.triangles, fixed, snap, repair);
+  return check_topology(mesh, exact).self_intersections;
+}
+
+// The frame the plan is made on: of the frames whose slices hold as many contours as frame 0's, the one
+// whose contours are shortest in all. The other frames then stretch its triangles, never squeeze them: a
+// base contour that shrinks to a third in systole would fold frame 0's triangles (biv-me), while the
+// systolic triangles stretched in diastole stay valid.
+std::size_t plan_frame(const Sequence& seq, const std::string& label) {
+  const Sequence sub = label.empty() ? seq : select_label(seq, label);
+  auto counts = [&](std::size_t f) {
+    std::map<int, std::size_t> c;
+    for (const Slice& s : sub.frames[f].slices)
+      if (!s.contours.empty()) c[s.id] = s.contours.size();
+    return c;
+  };
+  const auto first = counts(0);
+  std::size_t best = 0;
+  double best_length = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < sub.frames.size(); ++f) {
+    if (counts(f) != first) continue;
+    double length = 0.0;
+    for (const Slice& s : sub.frames[f].slices)
+      for (const Contour& c : s.contours) length += perimeter(c.points);
+    if (length < best_length) {
+      best_length = length;
+      best = f;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::optional<MeshSequence> rebuild_frames(const Sequence& seq, const SurfaceOptions& options, RebuildReport* report,
+                                           std::vector<SurfaceReport>* surfaces,
+                                           const std::function<void(int, int)>& progress) {
+  RebuildReport local;
+  RebuildReport& rep = report ? *report : local;
+  const std::size_t n = seq.frames.size();
+  const std::size_t planned = plan_frame(seq, options.label);
+  rep.plan_frame = static_cast<int>(planned);
+  const SurfacePlan plan = plan_surface(seq, static_cast<int>(planned), options);
+  if (!plan.unusable.empty()) {
+    rep.why_not = plan.unusable;
+    return std::nullopt;
+  }
+  std::vector<std::optional<TriangleMesh>> meshes(n);
+  std::vector<SurfaceReport> reports(n);
+  std::vector<std::string> why(n);
+  std::vector<std::exception_ptr> errors(n);
+  std::mutex mutex;
+  int done = 0;
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t f) {
+    try {
+      meshes[f] = reconstruct_frame_on_plan(seq, static_cast<int>(f), options, plan, &reports[f], &why[f]);
+      if (meshes[f]) {
+        SurfaceOptions own_options = options;
+        own_options.geometry_only = true;
+        const TriangleMesh own = reconstruct_frame(seq, static_cast<int>(f), own_options);
+        const std::size_t crossings =
+            settle_on_own(*meshes[f], plan.contour_vertices, own, options.edge, options.angle_target_deg);
+        if (crossings > 0) {
+          why[f] = fmt::format("frame 0's mesh on its contours crosses itself ({} triangle pairs)", crossings);
+          meshes[f].reset();
+        }
+      }
+    } catch (...) {
+      errors[f] = std::current_exception();
+    }
+    if (progress) {
+      std::lock_guard<std::mutex> lock(mutex);
+      progress(++done, static_cast<int>(n));
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  MeshSequence out;
+  for (std::size_t f = 0; f < n; ++f) {
+    out.times_ms.push_back(seq.frames[f].time_ms);
+    if (meshes[f]) {
+      if (out.triangles.empty()) out.triangles = meshes[f]->triangles;
+      out.positions.push_back(std::move(meshes[f]->positions));
+    } else {
+      rep.unfit.push_back(static_cast<int>(f));
+      rep.unfit_why.push_back(why[f]);
+      out.positions.emplace_back();
+    }
+  }
+  if (surfaces) *surfaces = std::move(reports);
+  return out;
+}
+
+}  // namespace c4d
