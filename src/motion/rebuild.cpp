@@ -120,7 +120,7 @@ std::optional<MeshSequence> rebuild_frames(const Sequence& seq, const SurfaceOpt
         const std::size_t crossings =
             settle_on_own(*meshes[f], plan.contour_vertices, own, options.edge, options.angle_target_deg);
         if (crossings > 0) {
-          why[f] = fmt::format("frame 0's mesh on its contours crosses itself ({} triangle pairs)", crossings);
+          why[f] = fmt::format("the plan's mesh on its contours crosses itself ({} triangle pairs)", crossings);
           meshes[f].reset();
         }
       }
