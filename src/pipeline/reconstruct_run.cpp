@@ -223,7 +223,7 @@ void one_frame(const ReconstructRunOptions& a, const Sequence& seq, const Recons
 
 // Where frames were carried onto a changed topology, the result must also keep triangles this well shaped in
 // every frame (the share of angles in 40–80° and the smallest angle), else the morph is tried as well.
-constexpr double kCarriedMinShare4080 = 80.0;
+constexpr double kCarriedMinShare4080 = 85.0;
 constexpr double kCarriedMinAngleDeg = 5.0;
 
 // The worst frame's triangle shape: the smallest share of angles in 40–80° (%) and the smallest angle (°).
