@@ -197,11 +197,11 @@ void add_reconstruct_command(CLI::App& root, std::vector<Command>& commands) {
 
   const std::string advanced = "Advanced";
   app->add_option("--method", args->run.method,
-                  "all frames: auto (default: rebuild where every frame's contours keep frame 0's topology, "
-                  "rbf-project where they change), rebuild (every frame its own surface on frame 0's mesh, in "
-                  "parallel), rbf-project (frame after frame, RBF then projection on each frame's own surface), "
-                  "carry (frame 0's mesh carried onto every frame, in parallel) or rbf (the paper's RBF only, a "
-                  "baseline)")
+                  "all frames: auto (default: every frame its own surface on one mesh, frames whose contours change "
+                  "carried from the nearest rebuilt frame; rbf-project where that fails its checks or leaves poor "
+                  "triangles), rebuild (every frame on one mesh, or a refusal where the contours change), "
+                  "rbf-project (frame after frame, RBF then projection on each frame's own surface), carry (frame "
+                  "0's mesh carried onto every frame, in parallel) or rbf (the paper's RBF only, a baseline)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "rebuild", "carry", "rbf-project", "rbf"}))
       ->group(advanced);

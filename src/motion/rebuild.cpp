@@ -1,5 +1,5 @@
 // All frames, each its own surface on one mesh (rebuild.h): Miara et al. §III.D's base mesh with per-frame
-// geometry, where the base mesh is frame 0's surface plan and each frame's geometry its own one-frame surface.
+// geometry, where the base mesh is the plan frame's surface plan and each frame's geometry its own one-frame surface.
 #include "contour4d/motion/rebuild.h"
 
 #include <algorithm>
@@ -41,11 +41,9 @@ std::size_t settle_on_own(TriangleMesh& mesh, std::size_t contour_vertices, cons
   std::vector<Vec3>& x = mesh.positions;
   const std::vector<Vec3> normals = area_weighted_normals(x, mesh.triangles, Vec3{});
   std::vector<std::int32_t> hints(x.size(), -1);
-  std::int32_t hint = -1;
   for (std::size_t v = contour_vertices; v < x.size(); ++v) {
     Vec3 n;
-    const Vec3 q = surface.closest(x[v], &n, &hint);
-    hints[v] = hint;
+    const Vec3 q = surface.closest(x[v], &n, &hints[v]);
     if (distance(q, x[v]) <= kMaxMoveEdges * edge && dot(n, normals[v]) >= kMinNormalCos) x[v] = q;
   }
   std::vector<char> fixed(x.size(), 0);
@@ -63,7 +61,7 @@ std::size_t settle_on_own(TriangleMesh& mesh, std::size_t contour_vertices, cons
 
 // The frame the plan is made on: of the frames whose slices hold as many contours as frame 0's, the one
 // whose contours are shortest in all. The other frames then stretch its triangles, never squeeze them: a
-// base contour that shrinks to a third in systole would fold frame 0's triangles (biv-me), while the
+// base contour that shrinks to a third in systole would fold diastolic triangles squeezed into it (biv-me), while the
 // systolic triangles stretched in diastole stay valid.
 std::size_t plan_frame(const Sequence& seq, const std::string& label) {
   const Sequence sub = label.empty() ? seq : select_label(seq, label);
@@ -134,6 +132,10 @@ std::optional<MeshSequence> rebuild_frames(const Sequence& seq, const SurfaceOpt
   });
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
+  if (std::none_of(meshes.begin(), meshes.end(), [](const auto& m) { return m.has_value(); })) {
+    rep.why_not = "no frame holds on the plan (" + why[planned] + ")";
+    return std::nullopt;
+  }
   MeshSequence out;
   for (std::size_t f = 0; f < n; ++f) {
     out.times_ms.push_back(seq.frames[f].time_ms);

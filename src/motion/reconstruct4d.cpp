@@ -95,26 +95,24 @@ void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOpti
   };
   std::vector<int> source(unfit.size());
   for (std::size_t k = 0; k < unfit.size(); ++k) source[k] = nearest_fit(unfit[k]);
-  std::vector<std::exception_ptr> errors(unfit.size());
-  tbb::parallel_for(std::size_t{0}, unfit.size(), [&](std::size_t k) {
-    try {
-      const auto t = static_cast<std::size_t>(unfit[k]), s = static_cast<std::size_t>(source[k]);
-      Sequence pair = seq;
-      pair.frames = {seq.frames[s], seq.frames[t]};
-      SurfaceOptions own = options.surface;
-      own.geometry_only = true;
-      CarryReport cr;
-      MeshSequence two = carry_frames(
-          pair, TriangleMesh{out.positions[s], out.triangles},
-          [&](std::size_t) { return reconstruct_frame(seq, static_cast<int>(t), own); }, options.carry, &cr);
-      out.positions[t] = std::move(two.positions[1]);
-      rep.carry.frames[t] = cr.frames[1];
-    } catch (...) {
-      errors[k] = std::current_exception();
+  // One carry per source frame: its frames share the thin-plate factorisations (carry.h), and run in parallel.
+  std::map<int, std::vector<int>> by_source;
+  for (std::size_t k = 0; k < unfit.size(); ++k) by_source[source[k]].push_back(unfit[k]);
+  SurfaceOptions own = options.surface;
+  own.geometry_only = true;
+  for (const auto& [s, targets] : by_source) {
+    Sequence group = seq;
+    group.frames = {seq.frames[static_cast<std::size_t>(s)]};
+    for (int t : targets) group.frames.push_back(seq.frames[static_cast<std::size_t>(t)]);
+    CarryReport cr;
+    MeshSequence carried = carry_frames(
+        group, TriangleMesh{out.positions[static_cast<std::size_t>(s)], out.triangles},
+        [&](std::size_t k) { return reconstruct_frame(seq, targets[k - 1], own); }, options.carry, &cr);
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+      out.positions[static_cast<std::size_t>(targets[k])] = std::move(carried.positions[k + 1]);
+      rep.carry.frames[static_cast<std::size_t>(targets[k])] = cr.frames[k + 1];
     }
-  });
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+  }
 }
 
 }  // namespace
@@ -134,10 +132,10 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
     if (options.all_frames == AllFramesMethod::Rebuild && (!rebuilt || !rep.rebuild.unfit.empty()))
       throw InvalidInput(
           ErrorCode::Usage, Location{seq.source},
-          "every frame on frame 0's mesh is not possible: " +
+          "every frame on one mesh is not possible: " +
               (rebuilt ? "frame " + std::to_string(rep.rebuild.unfit[0]) + ": " + rep.rebuild.unfit_why[0]
                        : rep.rebuild.why_not),
-          "use --method auto (the default), which carries frame 0's mesh where the contours change");
+          "use --method auto (the default), which carries the mesh onto frames whose contours change");
     if (rebuilt) {
       rep.used = AllFramesMethod::Rebuild;
       rep.morph.frames.assign(n, {});

@@ -354,7 +354,7 @@ void all_frames(const ReconstructRunOptions& a, const Sequence& seq, const Recon
     carried.push_back({{"frame", rr.rebuild.unfit[k]}, {"why", rr.rebuild.unfit_why[k]}});
   report["all_frames"]["carried_frames"] = carried;
   if (say && rr.used != AllFramesMethod::Rebuild && a.method == "auto")
-    say(fmt::format("  frames deformed from frame 0's mesh ({})", rr.rebuild.why_not));
+    say(fmt::format("  every frame on one mesh is not possible ({}): frame after frame instead", rr.rebuild.why_not));
   if (rr.used == AllFramesMethod::Rebuild && a.method == "auto") {
     if (!run.check.ok()) {
       morph_instead(a, seq, opt, closed, run, rr, report, say, "failed their checks (" + run.check.summary() + ")");
