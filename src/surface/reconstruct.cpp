@@ -13,7 +13,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -648,11 +647,7 @@ void canonical_contours(FrameWork& fw) {
     node_of[s].assign(raw.size(), -1);
     std::vector<std::vector<Vec2>> canon;
     for (std::size_t c = 0; c < raw.size(); ++c) canon.push_back(canonical_polygon(raw[c], depth[c] % 2 == 0));
-    std::vector<int> plan_match;  // replay: the contour of each of the slice's plan nodes
-    if (fw.replay) {
-      plan_match = match_to_plan(*fw.replay, static_cast<int>(s), canon, depth);
-      order = plan_match;
-    }
+    if (fw.replay) order = match_to_plan(*fw.replay, static_cast<int>(s), canon, depth);  // the plan's order
     for (std::size_t o = 0; o < order.size(); ++o) {
       const int c = order[o];
       Node n;
@@ -1122,7 +1117,7 @@ TriangleMesh fair(FrameWork& fw, bool& manifold) {
                            " non-manifold edges, " + std::to_string(coarse.nonmanifold_vertices) +
                            " non-manifold vertices); fairing and smoothing skipped");
   bool moved = false;
-  if (manifold && opt.fairing && !(fw.replay && std::getenv("C4D_NOFAIR"))) {
+  if (manifold && opt.fairing) {
     FairingOptions fo;
     fo.shape_weight = 1.0;
     if (!row_scale.empty()) {
@@ -1301,8 +1296,8 @@ TriangleMesh final_on_plan(const SurfacePlan& plan, const TriangleMesh& faired) 
   return out;
 }
 
-// Every step on one frame (up to the caps only when `until_caps`: what a plan records).
-TriangleMesh run_steps(FrameWork& fw, const Sequence& seq, int frame, bool until_caps) {
+// Every step on one frame: recording a plan (fw.record), following one (fw.replay) or neither.
+TriangleMesh run_steps(FrameWork& fw, const Sequence& seq, int frame) {
   const detail::SurfaceParams& opt = fw.opt;
   Location loc;
   loc.file = seq.source;
@@ -1323,7 +1318,6 @@ TriangleMesh run_steps(FrameWork& fw, const Sequence& seq, int frame, bool until
   tile_walls(fw);
   remesh_branch_bands(fw);
   add_caps(fw);
-  if (until_caps) return {};
   bool manifold = false;
   TriangleMesh mesh = fair(fw, manifold);
   if (fw.replay) {  // the plan's final mesh on this frame's faired surface; nothing else moves
@@ -1357,7 +1351,7 @@ SurfaceParams surface_params(const SurfaceOptions& options, const SurfaceTuning&
 
 TriangleMesh reconstruct_frame_tuned(const Sequence& seq, int frame, const SurfaceParams& opt, SurfaceReport* report) {
   FrameWork fw(opt);
-  TriangleMesh out = run_steps(fw, seq, frame, false);
+  TriangleMesh out = run_steps(fw, seq, frame);
   if (report) *report = std::move(fw.rep);
   return out;
 }
@@ -1373,7 +1367,7 @@ SurfacePlan plan_surface(const Sequence& seq, int frame, const SurfaceOptions& o
   const detail::SurfaceParams opt = detail::surface_params(options);
   FrameWork fw(opt);
   fw.record = &plan;
-  run_steps(fw, seq, frame, false);
+  run_steps(fw, seq, frame);
   if (!options.rows || options.geometry_only) plan.unusable = "the bands are remeshed (rows off)";
   if (options.tiling != Tiling::Bands) plan.unusable = "the Delaunay tiling";
   return plan;
@@ -1390,7 +1384,7 @@ std::optional<TriangleMesh> reconstruct_frame_on_plan(const Sequence& seq, int f
   FrameWork fw(opt);
   fw.replay = &plan;
   try {
-    TriangleMesh out = run_steps(fw, seq, frame, false);
+    TriangleMesh out = run_steps(fw, seq, frame);
     if (report) *report = std::move(fw.rep);
     return out;
   } catch (const PlanMismatch& m) {
