@@ -137,10 +137,10 @@ std::optional<MeshSequence> rebuild_frames(const Sequence& seq, const SurfaceOpt
     return std::nullopt;
   }
   MeshSequence out;
+  out.triangles = plan.final_triangles;
   for (std::size_t f = 0; f < n; ++f) {
     out.times_ms.push_back(seq.frames[f].time_ms);
     if (meshes[f]) {
-      if (out.triangles.empty()) out.triangles = meshes[f]->triangles;
       out.positions.push_back(std::move(meshes[f]->positions));
     } else {
       rep.unfit.push_back(static_cast<int>(f));

@@ -73,9 +73,9 @@ MeshSequence carry_4d(const Sequence& seq, const Reconstruct4DOptions& options, 
   return out;
 }
 
-// The frames whose contours do not fit frame 0's plan (a contour that appears, vanishes, splits or merges):
-// the nearest rebuilt frame's mesh (in the cycle; the earlier one on a tie) carried onto the frame's own
-// surface (carry.h), each frame on its own.
+// The frames that do not fit the plan (a contour that appears, vanishes, splits or merges) or folded on it:
+// the nearest rebuilt frame's mesh (in the cycle; the earlier one on a tie) carried onto each frame's own
+// surface (carry.h), one carry per source frame.
 void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options,
                  Reconstruct4DReport& rep) {
   const std::vector<int>& unfit = rep.rebuild.unfit;

@@ -507,10 +507,7 @@ std::vector<int> match_to_plan(const SurfacePlan& plan, int s, const std::vector
     for (std::size_t c = 0; c < canon.size(); ++c) {
       const PlanNode& pn = plan.nodes[static_cast<std::size_t>(plan_nodes[a])];
       if (pn.depth != depth[c]) continue;
-      Vec2 centre;
-      for (const Vec2& p : canon[c]) centre = centre + p;
-      centre = (1.0 / static_cast<double>(canon[c].size())) * centre;
-      pairs.emplace_back(norm(centre - pn.centroid), static_cast<int>(a), static_cast<int>(c));
+      pairs.emplace_back(norm(mean_point(canon[c]) - pn.centroid), static_cast<int>(a), static_cast<int>(c));
     }
   std::sort(pairs.begin(), pairs.end());
   std::vector<int> out(plan_nodes.size(), -1);
@@ -663,8 +660,7 @@ void canonical_contours(FrameWork& fw) {
         PlanNode pn;
         pn.slice = static_cast<int>(s);
         pn.depth = n.depth;
-        for (const Vec2& p : canon[c]) pn.centroid = pn.centroid + p;
-        pn.centroid = (1.0 / static_cast<double>(canon[c].size())) * pn.centroid;
+        pn.centroid = mean_point(canon[c]);
         pn.reference = resample_count(canon[c], n.poly.size());
         fw.record->nodes.push_back(std::move(pn));
       }
@@ -1249,9 +1245,9 @@ void record_final(SurfacePlan& plan, const TriangleMesh& faired, TriangleMesh& m
   std::vector<char> used(mesh.positions.size(), 0);
   for (const Triangle& t : mesh.triangles)
     for (std::uint32_t v : t) used[v] = 1;
-  const auto n_contour = static_cast<std::uint32_t>(plan.contour_vertices);
   std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);
   std::vector<Vec3> positions(plan.contour_vertices);
+  std::vector<char> kept(plan.contour_vertices, 0);  // per contour vertex: present in the final mesh
   const SurfaceProjector surface(faired);
   std::int32_t hint = -1;
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -1261,6 +1257,7 @@ void record_final(SurfacePlan& plan, const TriangleMesh& faired, TriangleMesh& m
     if (it != contour_at.end()) {
       remap[v] = it->second;
       positions[it->second] = p;
+      kept[it->second] = 1;
       continue;
     }
     remap[v] = static_cast<std::uint32_t>(positions.size());
@@ -1273,9 +1270,8 @@ void record_final(SurfacePlan& plan, const TriangleMesh& faired, TriangleMesh& m
     e.weights = barycentric(p, faired.positions[t[0]], faired.positions[t[1]], faired.positions[t[2]]);
     plan.embedding.push_back(e);
   }
-  for (std::uint32_t c = 0; c < n_contour; ++c)
-    if (std::find(remap.begin(), remap.end(), c) == remap.end())
-      plan.unusable = "the final remeshing dropped a contour vertex";
+  if (std::find(kept.begin(), kept.end(), 0) != kept.end())
+    plan.unusable = "the final remeshing dropped a contour vertex";
   for (Triangle& t : mesh.triangles)
     for (std::uint32_t& v : t) v = remap[v];
   mesh.positions = std::move(positions);

@@ -30,16 +30,10 @@ Vec2 point_at(const std::vector<Vec2>& polygon, const std::vector<double>& cum, 
   return polygon[seg] + f * (polygon[(seg + 1) % n] - polygon[seg]);
 }
 
-Vec2 mean(const std::vector<Vec2>& pts) {
-  Vec2 c;
-  for (const Vec2& p : pts) c = c + p;
-  return pts.empty() ? c : (1.0 / static_cast<double>(pts.size())) * c;
-}
-
 // Correlation about the centroids of the polygon sampled from `start` with the centred reference.
 double correlation(const std::vector<Vec2>& polygon, const std::vector<Vec2>& centred_ref, double start) {
   const std::vector<Vec2> s = resample_count(polygon, centred_ref.size(), start);
-  const Vec2 c = mean(s);
+  const Vec2 c = mean_point(s);
   double sum = 0.0;
   for (std::size_t k = 0; k < s.size(); ++k) sum += dot(s[k] - c, centred_ref[k]);
   return sum;
@@ -63,12 +57,12 @@ std::vector<Vec2> resample_count(const std::vector<Vec2>& polygon, std::size_t c
 std::vector<Vec2> aligned_samples(const std::vector<Vec2>& polygon, const std::vector<Vec2>& reference) {
   const std::size_t n = reference.size();
   if (n == 0 || polygon.size() < 2) return {};
-  const Vec2 rc = mean(reference);
+  const Vec2 rc = mean_point(reference);
   std::vector<Vec2> ref(n);
   for (std::size_t k = 0; k < n; ++k) ref[k] = reference[k] - rc;
   // Coarse: every whole step of the samples (one resampling, cyclic shifts).
   const std::vector<Vec2> s = resample_count(polygon, n, 0.0);
-  const Vec2 sc = mean(s);
+  const Vec2 sc = mean_point(s);
   std::size_t best = 0;
   double best_score = -std::numeric_limits<double>::infinity();
   for (std::size_t j = 0; j < n; ++j) {
@@ -126,6 +120,12 @@ std::vector<double> mean_value_weights(Vec2 x, const std::vector<std::vector<Vec
   if (std::abs(sum) > 1e-300)
     for (double& v : w) v /= sum;
   return w;
+}
+
+Vec2 mean_point(const std::vector<Vec2>& points) {
+  Vec2 c;
+  for (const Vec2& p : points) c = c + p;
+  return points.empty() ? c : (1.0 / static_cast<double>(points.size())) * c;
 }
 
 std::array<double, 3> barycentric(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {

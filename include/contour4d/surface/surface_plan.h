@@ -76,6 +76,9 @@ std::vector<Vec2> aligned_samples(const std::vector<Vec2>& polygon, const std::v
 //! clockwise; Hormann & Floater 2006): one weight per point, loops in order, summing to 1. x inside the region.
 std::vector<double> mean_value_weights(Vec2 x, const std::vector<std::vector<Vec2>>& loops);
 
+//! The mean of `points` (0, 0 when empty): a contour's centroid for matching it across frames.
+Vec2 mean_point(const std::vector<Vec2>& points);
+
 //! Barycentric coordinates of p projected onto the plane of triangle (a, b, c); (1, 0, 0) when degenerate.
 std::array<double, 3> barycentric(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
 
