@@ -23,6 +23,7 @@
 #include "contour4d/motion/chains.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/motion/contour_matching.h"
+#include "contour4d/motion/disc_map.h"
 #include "contour4d/surface/angle_repair.h"
 #include "contour4d/metrics/surface_projector.h"
 
@@ -77,6 +78,7 @@ struct FrameTargets {
   std::vector<std::int32_t> line;        // per vertex: index into `lines`, −1 when not on a matched chain
   std::vector<char> orphan;              // per vertex: on a chain whose contour vanished, split or merged
   std::vector<std::vector<Vec3>> lines;  // the matched contours of frame t
+  std::vector<const std::vector<std::uint32_t>*> line_loops;  // per line: frame 0's chain on it, in order
   std::vector<MatchedLoop> loops;
   int matched = 0, unmatched = 0;
 };
@@ -143,6 +145,7 @@ void match_slice(const std::vector<const Chain*>& chains, const Slice* slice, co
                          equal_area_radius(partner_poly)});
     const auto line = static_cast<std::int32_t>(out.lines.size());
     out.lines.push_back(slice->contours[static_cast<std::size_t>(partner)].points);
+    out.line_loops.push_back(&chains[i]->loop);
     const std::vector<std::uint32_t>& loop = chains[i]->loop;
     for (std::size_t k = 0; k < loop.size(); ++k) {
       out.fixed[loop[k]] = 1;
@@ -315,15 +318,134 @@ double first_hit(Vec3 o, Vec3 d, const std::vector<Vec3>& x, const std::vector<T
   return best;
 }
 
+// Triangles' border edges (used by one triangle) as a map from each edge's first vertex to its second, in the
+// triangles' orientation; false when a vertex starts two border edges (not one simple loop per border).
+bool border_edges(const std::vector<Triangle>& tris, std::map<std::uint32_t, std::uint32_t>& next) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  next.clear();
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      if (uses[{std::min(a, b), std::max(a, b)}] == 1 && !next.emplace(a, b).second) return false;
+    }
+  return true;
+}
+
+// Whether `tris` form a disc: Euler characteristic 1 and one border loop.
+bool is_disc(const std::vector<Triangle>& tris) {
+  std::map<std::uint32_t, std::uint32_t> next;
+  if (tris.empty() || !border_edges(tris, next) || next.empty()) return false;
+  std::size_t loop = 1;
+  for (std::uint32_t v = next.begin()->second; v != next.begin()->first; ++loop) {
+    const auto it = next.find(v);
+    if (it == next.end() || loop > next.size()) return false;
+    v = it->second;
+  }
+  std::vector<std::uint32_t> vertices;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      vertices.push_back(t[static_cast<std::size_t>(k)]);
+      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      edges[{std::min(a, b), std::max(a, b)}] = 1;
+    }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  return loop == next.size() &&
+         static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) + static_cast<long>(tris.size()) == 1;
+}
+
+// The frame's own dome beyond `contour` (a closed contour on a slice plane; `dir` points from the plane into
+// the dome): the own surface's triangles with every vertex on or beyond that plane, the connected part whose
+// border lies on the contour, as a disc with its border loop. Empty when there is no such disc.
+Disc own_dome(const TriangleMesh& own, const std::vector<Vec3>& contour, Vec3 dir) {
+  constexpr double kOnPlane = 1e-5, kOnContour = 1e-3;  // mm
+  double plane = 0;
+  for (const Vec3& p : contour) plane += dot(p, dir);
+  plane /= static_cast<double>(std::max<std::size_t>(1, contour.size()));
+  const std::vector<Vec3>& y = own.positions;
+  std::vector<std::uint32_t> parent(y.size());
+  for (std::size_t v = 0; v < y.size(); ++v) parent[v] = static_cast<std::uint32_t>(v);
+  auto root = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::vector<const Triangle*> beyond;
+  for (const Triangle& t : own.triangles)
+    if (dot(y[t[0]], dir) >= plane - kOnPlane && dot(y[t[1]], dir) >= plane - kOnPlane &&
+        dot(y[t[2]], dir) >= plane - kOnPlane) {
+      beyond.push_back(&t);
+      parent[root(t[1])] = root(t[0]);
+      parent[root(t[2])] = root(t[0]);
+    }
+  std::map<std::uint32_t, std::vector<Triangle>> parts;
+  for (const Triangle* t : beyond) parts[root((*t)[0])].push_back(*t);
+  for (auto& [r, tris] : parts) {
+    std::map<std::uint32_t, std::uint32_t> next;
+    if (!border_edges(tris, next) || next.empty()) continue;
+    std::vector<Vec3> border_points;
+    for (const auto& [a, b] : next) border_points.push_back(y[a]);
+    bool on_contour = true;
+    for (const Vec3& p : border_points) {
+      std::int32_t hint = -1;
+      on_contour = on_contour && norm(closest_on_loop(contour, p, hint) - p) <= kOnContour;
+    }
+    if (!on_contour || !is_disc(tris)) continue;
+    Disc d;
+    d.triangles = std::move(tris);
+    d.border.push_back(next.begin()->first);
+    for (std::uint32_t v = next.begin()->second; v != d.border.front(); v = next[v]) d.border.push_back(v);
+    return d;
+  }
+  return {};
+}
+
+// The retreated region `members` of frame 0's mesh (a disc bounded by the matched chain on `line`) laid onto
+// the frame's own dome beyond that contour (disc_map.h): both flattened with their borders by arc length
+// along the contour, each member lifted from its place. False (guess untouched) when either is not a disc.
+bool map_dome(std::vector<Vec3>& guess, const std::vector<Vec3>& x0, const std::vector<Triangle>& tris,
+              const std::vector<std::int32_t>& region, std::int32_t id, const FrameTargets& ft, std::size_t line,
+              const TriangleMesh& own, Vec3 dir) {
+  const std::vector<Vec3>& contour = ft.lines[line];
+  Disc from;
+  from.border = *ft.line_loops[line];
+  for (const Triangle& t : tris)
+    if (region[t[0]] == id || region[t[1]] == id || region[t[2]] == id) from.triangles.push_back(t);
+  if (!is_disc(from.triangles)) return false;
+  const Disc onto = own_dome(own, contour, dir);
+  if (onto.triangles.empty()) return false;
+  std::vector<Vec3> from_border, onto_border;
+  for (std::uint32_t v : from.border) from_border.push_back(ft.target[v]);
+  for (std::uint32_t v : onto.border) onto_border.push_back(own.positions[v]);
+  const std::vector<Vec2> uv_from = flatten_disc(x0, from, turns_along(contour, from_border));
+  const std::vector<Vec2> uv_onto = flatten_disc(own.positions, onto, turns_along(contour, onto_border));
+  std::vector<std::uint32_t> members;
+  std::vector<Vec2> where;
+  for (std::size_t v = 0; v < x0.size(); ++v)
+    if (region[v] == id) {
+      members.push_back(static_cast<std::uint32_t>(v));
+      where.push_back(uv_from[v]);
+    }
+  const std::vector<Vec3> lifted = lift_from_disc(where, own.positions, onto, uv_onto);
+  for (std::size_t k = 0; k < members.size(); ++k) guess[members[k]] = lifted[k];
+  return true;
+}
+
 // A retreating dome: the vertices off the matched chains that hang from exactly one matched chain and
 // hold a chain whose contour vanished (an apex or base, or a myocardium's cavity, that moved back
-// through a slice plane). The thin-plate guess only extrapolates there, far off. Frame 0's region is
-// scaled onto frame t's dome about that chain: in the plane by the ratio of the chain's and its contour's
+// through a slice plane). The thin-plate guess only extrapolates there, far off. Frame 0's region is laid
+// onto frame t's own dome beyond that chain's contour, one-to-one (map_dome). Where either is not a disc, it
+// is scaled onto it about that chain instead: in the plane by the ratio of the chain's and its contour's
 // equal-area radii, along the normal by the ratio of the domes' heights at the contour's centroid (the
 // first sheet a ray from it meets that faces as frame 0's dome does: a cavity's dome inside an apex faces
 // the other way).
-void rescale_retreating_domes(std::vector<Vec3>& guess, const std::vector<Vec3>& x0, const std::vector<Triangle>& tris,
-                              const Rings& rings, const FrameTargets& ft, const TriangleMesh& own, Vec3 normal) {
+void place_retreating_domes(std::vector<Vec3>& guess, const std::vector<Vec3>& x0, const std::vector<Triangle>& tris,
+                            const Rings& rings, const FrameTargets& ft, const TriangleMesh& own, Vec3 normal) {
   const std::size_t n = x0.size();
   std::vector<std::int32_t> region(n, -1);
   std::int32_t regions = 0;
@@ -350,6 +472,7 @@ void rescale_retreating_domes(std::vector<Vec3>& guess, const std::vector<Vec3>&
     double side = 0;
     for (std::size_t v : members) side += dot(x0[v], normal) - l.height;
     const Vec3 dir = side >= 0 ? normal : -normal;
+    if (map_dome(guess, x0, tris, region, id, ft, static_cast<std::size_t>(touching.front()), own, dir)) continue;
     auto in_region = [&](std::size_t k) {
       return region[tris[k][0]] == id || region[tris[k][1]] == id || region[tris[k][2]] == id;
     };
@@ -469,7 +592,7 @@ MeshSequence carry_frames(const Sequence& seq, const TriangleMesh& frame0,
       fr.fixed_vertices = static_cast<std::size_t>(std::count(ft.fixed.begin(), ft.fixed.end(), 1));
       const TriangleMesh own = surface(t);
       std::vector<Vec3> guess = thin_plate_guess(q, systems[system[t]], x0, ft);
-      rescale_retreating_domes(guess, x0, frame0.triangles, rings, ft, own, seq.normal);
+      place_retreating_domes(guess, x0, frame0.triangles, rings, ft, own, seq.normal);
       out.positions[t] = carry_one(guess, ft, rings, frame0.triangles, own, options, fr);
     } catch (...) {
       errors[t] = std::current_exception();

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <utility>
 
 namespace c4d {
 
@@ -22,20 +23,48 @@ std::vector<Chain> find_chains(const Sequence& seq, const TriangleMesh& mesh) {
     const Plane pl = slice_plane(seq, *any);
     std::vector<char> on(mesh.positions.size());
     for (std::size_t i = 0; i < on.size(); ++i) on[i] = std::abs(signed_distance(pl, mesh.positions[i])) < tol;
-    // On-plane edges of triangles that are not entirely on the plane, oriented as the triangle
-    // above the plane runs them (a triangle below runs the same edge the other way).
-    std::map<std::uint32_t, std::vector<std::uint32_t>> succ;
+    // On-plane edges of triangles that are not entirely on the plane, oriented as the triangle above the plane
+    // runs them (a triangle below runs the same edge the other way); where the two triangles at an edge
+    // disagree (both on one side), the one whose third vertex lies farther from the plane decides.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<double, std::uint32_t>>
+        edge_from;  // → (|height|, first)
     for (const Triangle& t : mesh.triangles) {
       if (on[t[0]] && on[t[1]] && on[t[2]]) continue;
       for (int k = 0; k < 3; ++k) {
         std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
         const std::uint32_t c = t[static_cast<std::size_t>((k + 2) % 3)];
         if (!on[a] || !on[b]) continue;
-        if (signed_distance(pl, mesh.positions[c]) < 0) std::swap(a, b);
-        auto& s = succ[a];
-        if (std::find(s.begin(), s.end(), b) == s.end()) s.push_back(b);
+        const double height = signed_distance(pl, mesh.positions[c]);
+        if (height < 0) std::swap(a, b);
+        const auto [it, first] = edge_from.try_emplace({std::min(a, b), std::max(a, b)}, std::abs(height), a);
+        if (!first && std::abs(height) > it->second.first) it->second = {std::abs(height), a};
       }
     }
+    // A vertex with several successors (a cap's ear: a triangle of three contour vertices, whose chord is
+    // also an edge above the plane) keeps the one whose edge lies on the slice's contour.
+    const Slice* mine = nullptr;
+    for (const Slice& s : seq.frames.empty() ? std::vector<Slice>{} : seq.frames[0].slices)
+      if (s.id == id) mine = &s;
+    auto off_contour = [&](std::uint32_t a, std::uint32_t b) {
+      const Vec3 m = 0.5 * (mesh.positions[a] + mesh.positions[b]);
+      double best = std::numeric_limits<double>::infinity();
+      if (mine)
+        for (const Contour& c : mine->contours) {
+          std::int32_t hint = -1;
+          if (c.points.size() >= 2) best = std::min(best, norm(closest_on_loop(c.points, m, hint) - m));
+        }
+      return best;
+    };
+    std::map<std::uint32_t, std::vector<std::uint32_t>> succ;
+    for (const auto& [edge, from] : edge_from)
+      succ[from.second].push_back(from.second == edge.first ? edge.second : edge.first);
+    for (auto& [a, next] : succ)
+      if (next.size() > 1) {
+        const auto best = std::min_element(next.begin(), next.end(), [&](std::uint32_t p, std::uint32_t q) {
+          return off_contour(a, p) < off_contour(a, q);
+        });
+        next = {*best};
+      }
     std::set<std::uint32_t> used;
     for (const auto& [v0, unused] : succ) {
       if (used.count(v0)) continue;

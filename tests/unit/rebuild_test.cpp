@@ -2,7 +2,8 @@
 // smooth blobs with random motion drawn from seeds: the same triangles in every frame by construction, each
 // frame closed and free of crossings, each within a few hundredths of a millimetre of its own one-frame
 // surface, the result independent of the contours' start points and orientation and of the thread count;
-// frames whose contours change topology are named, and a branching plan is refused.
+// frames whose contours change topology are named, an end contour that vanishes is carried onto the frame's
+// own dome without folds, and a branching plan is refused.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -12,8 +13,10 @@
 #include <tbb/global_control.h>
 
 #include "contour4d/metrics/distance.h"
+#include "contour4d/metrics/quality.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/motion/rebuild.h"
+#include "contour4d/motion/reconstruct4d.h"
 #include "contour4d/surface/reconstruct.h"
 #include "contour4d/surface/surface_plan.h"
 
@@ -141,6 +144,29 @@ TEST(Rebuild, FramesWithAnotherTopologyAreNamed) {
   EXPECT_NE(rep.unfit_why[0].find("slices"), std::string::npos) << rep.unfit_why[0];
   EXPECT_TRUE(m->positions[2].empty());
   EXPECT_FALSE(m->positions[1].empty());
+}
+
+TEST(Rebuild, EndContoursThatVanishAreCarriedOntoTheFramesOwnDome) {
+  const unsigned seeds = C4D_HEAVY_TESTS ? 4 : 1;  // the sanitizer build: one
+  for (unsigned seed = 1; seed <= seeds; ++seed) {
+    Sequence seq = blob_family(20 + seed);
+    // The top contour vanishes in the middle frames: an end moving back through its slice plane.
+    for (std::size_t f = 1; f + 1 < seq.frames.size(); ++f) seq.frames[f].slices.pop_back();
+    Reconstruct4DReport rep;
+    const MeshSequence m = reconstruct_4d(seq, {}, &rep);
+    ASSERT_EQ(rep.used, AllFramesMethod::Rebuild) << "seed " << seed << ": " << rep.rebuild.why_not;
+    EXPECT_EQ(rep.rebuild.unfit.size(), seq.frames.size() - 2) << "seed " << seed;
+    for (std::size_t f = 0; f < seq.frames.size(); ++f) {
+      ASSERT_EQ(m.positions[f].size(), m.positions[0].size()) << "seed " << seed;
+      const TopologyReport t = check_topology(m.frame(f), {.self_intersections = true});
+      EXPECT_TRUE(t.faults.empty()) << "seed " << seed << " frame " << f << ": "
+                                    << (t.faults.empty() ? "" : t.faults[0]);
+      EXPECT_EQ(t.self_intersections, 0u) << "seed " << seed << " frame " << f;
+      EXPECT_GT(t.signed_volume, 0.0);
+      EXPECT_LT(mean_distance_to_own(m.frame(f), seq, static_cast<int>(f)), 0.05) << "seed " << seed << " frame " << f;
+      EXPECT_GT(angle_quality(m.frame(f)).min_angle_deg, 5.0) << "seed " << seed << " frame " << f;
+    }
+  }
 }
 
 TEST(Rebuild, PlanOfABranchingIsUnusable) {

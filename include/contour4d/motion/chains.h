@@ -22,7 +22,9 @@ struct Chain {
 
 //! The contour chains of `mesh` (built through the contours of one frame of `seq`): edges with both
 //! ends on a slice plane whose two triangles are not both in that plane (so flat caps' interiors are
-//! excluded), chained into closed loops.
+//! excluded), chained into closed loops. Where a vertex starts two such edges (a cap's ear: a triangle of three
+//! contour vertices in the plane, its chord an edge of the dome), the edge whose midpoint lies nearer to the
+//! slice's contours in seq.frames[0] is kept.
 std::vector<Chain> find_chains(const Sequence& seq, const TriangleMesh& mesh);
 
 //! The contour j that contour i matches one-to-one: i's only partner over `threshold` is j, and j's only
