@@ -94,29 +94,35 @@ Frame without_ends(const Sequence& seq, const Frame& f, int ends) {
 // the first try's: 20 rounds fold a thin myocardial shell that 6 keep valid.
 constexpr int kRetryRelaxRounds = 20;
 
-// How a carried frame came out: crossing triangle pairs, then triangles with an angle below 25°; fewer is better.
+// How a carried frame came out: crossing triangle pairs, then triangles with an angle below 25°, then the share
+// of angles in 40–80°.
 struct CarriedShape {
   std::size_t crossings = 0;
   std::size_t bad = 0;
   std::size_t triangles = 0;
-  // No crossing, and at most 1 % of the triangles with an angle below 25° (rebuild.h's bound for a rebuilt frame).
-  bool good() const { return crossings == 0 && bad * 100 <= triangles; }
-  bool operator<(const CarriedShape& o) const { return std::tie(crossings, bad) < std::tie(o.crossings, o.bad); }
+  double share_40_80 = 0.0;
+  // No crossing, at most 1 % of the triangles with an angle below 25° (rebuild.h's bound for a rebuilt frame),
+  // and at least 85 % of the angles in 40–80° (the run's bound for carried frames, reconstruct_run.cpp).
+  bool good() const { return crossings == 0 && bad * 100 <= triangles && share_40_80 >= 85.0; }
+  bool operator<(const CarriedShape& o) const {
+    return std::tie(crossings, bad, o.share_40_80) < std::tie(o.crossings, o.bad, share_40_80);
+  }
 };
 
 CarriedShape carried_shape(const TriangleMesh& m) {
   const TopologyOptions exact{.self_intersections = true, .counts_only = true};
-  return {check_topology(m, exact).self_intersections, angle_quality(m).bad_triangles, m.triangles.size()};
+  const AngleQuality q = angle_quality(m);
+  return {check_topology(m, exact).self_intersections, q.bad_triangles, m.triangles.size(), q.pct_40_80};
 }
 
 // The frames that do not fit the plan (a contour that appears, vanishes, splits or merges) or folded on it:
 // the nearest rebuilt frame's mesh (in the cycle; the earlier one on a tie) carried onto each frame's own
 // surface (carry.h), one carry per source frame. A carried frame whose triangles cross or are squeezed (more
-// than 1 % with an angle below 25°) is carried again with more smoothing rounds (kRetryRelaxRounds), then also
+// than 1 % with an angle below 25°, or less than 85 % of the angles in 40–80°) is carried again with more smoothing rounds (kRetryRelaxRounds), then also
 // with an end contour (then the other, then both) left out of the matching: a base contour that shrank to a
 // fraction of the source's folds or squeezes the band above it, while the part beyond the next slice laid onto
 // the frame's own dome (carry.h) keeps its shape. The first try that is good is kept, else the best (fewest
-// crossings, then fewest poor triangles).
+// crossings, then fewest poor triangles, then the largest share in 40–80°).
 void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options,
                  Reconstruct4DReport& rep) {
   const std::vector<int>& unfit = rep.rebuild.unfit;
