@@ -43,8 +43,9 @@ std::vector<Chain> find_chains(const Sequence& seq, const TriangleMesh& mesh) {
     // A vertex with several successors (a cap's ear: a triangle of three contour vertices, whose chord is
     // also an edge above the plane) keeps the one whose edge lies on the slice's contour.
     const Slice* mine = nullptr;
-    for (const Slice& s : seq.frames.empty() ? std::vector<Slice>{} : seq.frames[0].slices)
-      if (s.id == id) mine = &s;
+    if (!seq.frames.empty())
+      for (const Slice& s : seq.frames[0].slices)
+        if (s.id == id) mine = &s;
     auto off_contour = [&](std::uint32_t a, std::uint32_t b) {
       const Vec3 m = 0.5 * (mesh.positions[a] + mesh.positions[b]);
       double best = std::numeric_limits<double>::infinity();
