@@ -118,11 +118,12 @@ CarriedShape carried_shape(const TriangleMesh& m) {
 // The frames that do not fit the plan (a contour that appears, vanishes, splits or merges) or folded on it:
 // the nearest rebuilt frame's mesh (in the cycle; the earlier one on a tie) carried onto each frame's own
 // surface (carry.h), one carry per source frame. A carried frame whose triangles cross or are squeezed (more
-// than 1 % with an angle below 25°, or less than 85 % of the angles in 40–80°) is carried again with more smoothing rounds (kRetryRelaxRounds), then also
-// with an end contour (then the other, then both) left out of the matching: a base contour that shrank to a
-// fraction of the source's folds or squeezes the band above it, while the part beyond the next slice laid onto
-// the frame's own dome (carry.h) keeps its shape. The first try that is good is kept, else the best (fewest
-// crossings, then fewest poor triangles, then the largest share in 40–80°).
+// than 1 % with an angle below 25°, or less than 85 % of the angles in 40–80°) is carried again with more
+// smoothing rounds (kRetryRelaxRounds), then also with an end contour (then the other, then both) left out of
+// the matching: a base contour that shrank to a fraction of the source's folds or squeezes the band above it,
+// while the part beyond the next slice laid onto the frame's own dome (carry.h) keeps its shape. The first try
+// that is good is kept, else the best (fewest crossings, then fewest poor triangles, then the largest share in
+// 40–80°).
 void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options,
                  Reconstruct4DReport& rep) {
   const std::vector<int>& unfit = rep.rebuild.unfit;
@@ -160,7 +161,8 @@ void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOpti
     };
     CarryReport cr;
     const MeshSequence carried = carry(targets, 0, options.carry, cr);
-    for (std::size_t k = 0; k < targets.size(); ++k) {
+    // The frames tried again run in parallel: each writes its own frame only.
+    tbb::parallel_for(std::size_t{0}, targets.size(), [&](std::size_t k) {
       const auto t = static_cast<std::size_t>(targets[k]);
       std::vector<Vec3> best = carried.positions[k + 1];
       CarryFrameReport best_report = cr.frames[k + 1];
@@ -177,7 +179,7 @@ void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOpti
       }
       out.positions[t] = std::move(best);
       rep.carry.frames[t] = best_report;
-    }
+    });
   }
 }
 
