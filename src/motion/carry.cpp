@@ -318,93 +318,6 @@ double first_hit(Vec3 o, Vec3 d, const std::vector<Vec3>& x, const std::vector<T
   return best;
 }
 
-// Triangles' border edges (used by one triangle) as a map from each edge's first vertex to its second, in the
-// triangles' orientation; false when a vertex starts two border edges (not one simple loop per border).
-bool border_edges(const std::vector<Triangle>& tris, std::map<std::uint32_t, std::uint32_t>& next) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-  for (const Triangle& t : tris)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
-  next.clear();
-  for (const Triangle& t : tris)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
-      if (uses[{std::min(a, b), std::max(a, b)}] == 1 && !next.emplace(a, b).second) return false;
-    }
-  return true;
-}
-
-// Whether `tris` form a disc: Euler characteristic 1 and one border loop.
-bool is_disc(const std::vector<Triangle>& tris) {
-  std::map<std::uint32_t, std::uint32_t> next;
-  if (tris.empty() || !border_edges(tris, next) || next.empty()) return false;
-  std::size_t loop = 1;
-  for (std::uint32_t v = next.begin()->second; v != next.begin()->first; ++loop) {
-    const auto it = next.find(v);
-    if (it == next.end() || loop > next.size()) return false;
-    v = it->second;
-  }
-  std::vector<std::uint32_t> vertices;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-  for (const Triangle& t : tris)
-    for (int k = 0; k < 3; ++k) {
-      vertices.push_back(t[static_cast<std::size_t>(k)]);
-      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
-      edges[{std::min(a, b), std::max(a, b)}] = 1;
-    }
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  return loop == next.size() &&
-         static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) + static_cast<long>(tris.size()) == 1;
-}
-
-// The frame's own dome beyond `contour` (a closed contour on a slice plane; `dir` points from the plane into
-// the dome): the own surface's triangles with every vertex on or beyond that plane, the connected part whose
-// border lies on the contour, as a disc with its border loop. Empty when there is no such disc.
-Disc own_dome(const TriangleMesh& own, const std::vector<Vec3>& contour, Vec3 dir) {
-  constexpr double kOnPlane = 1e-5, kOnContour = 1e-3;  // mm
-  double plane = 0;
-  for (const Vec3& p : contour) plane += dot(p, dir);
-  plane /= static_cast<double>(std::max<std::size_t>(1, contour.size()));
-  const std::vector<Vec3>& y = own.positions;
-  std::vector<std::uint32_t> parent(y.size());
-  for (std::size_t v = 0; v < y.size(); ++v) parent[v] = static_cast<std::uint32_t>(v);
-  auto root = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  std::vector<const Triangle*> beyond;
-  for (const Triangle& t : own.triangles)
-    if (dot(y[t[0]], dir) >= plane - kOnPlane && dot(y[t[1]], dir) >= plane - kOnPlane &&
-        dot(y[t[2]], dir) >= plane - kOnPlane) {
-      beyond.push_back(&t);
-      parent[root(t[1])] = root(t[0]);
-      parent[root(t[2])] = root(t[0]);
-    }
-  std::map<std::uint32_t, std::vector<Triangle>> parts;
-  for (const Triangle* t : beyond) parts[root((*t)[0])].push_back(*t);
-  for (auto& [r, tris] : parts) {
-    std::map<std::uint32_t, std::uint32_t> next;
-    if (!border_edges(tris, next) || next.empty()) continue;
-    std::vector<Vec3> border_points;
-    for (const auto& [a, b] : next) border_points.push_back(y[a]);
-    bool on_contour = true;
-    for (const Vec3& p : border_points) {
-      std::int32_t hint = -1;
-      on_contour = on_contour && norm(closest_on_loop(contour, p, hint) - p) <= kOnContour;
-    }
-    if (!on_contour || !is_disc(tris)) continue;
-    Disc d;
-    d.triangles = std::move(tris);
-    d.border.push_back(next.begin()->first);
-    for (std::uint32_t v = next.begin()->second; v != d.border.front(); v = next[v]) d.border.push_back(v);
-    return d;
-  }
-  return {};
-}
-
 // The retreated region `members` of frame 0's mesh (a disc bounded by the matched chain on `line`) laid onto
 // the frame's own dome beyond that contour (disc_map.h): both flattened with their borders by arc length
 // along the contour, each member lifted from its place. False (guess untouched) when either is not a disc.
@@ -417,7 +330,7 @@ bool map_dome(std::vector<Vec3>& guess, const std::vector<Vec3>& x0, const std::
   for (const Triangle& t : tris)
     if (region[t[0]] == id || region[t[1]] == id || region[t[2]] == id) from.triangles.push_back(t);
   if (!is_disc(from.triangles)) return false;
-  const Disc onto = own_dome(own, contour, dir);
+  const Disc onto = disc_beyond(own, contour, dir);
   if (onto.triangles.empty()) return false;
   std::vector<Vec3> from_border, onto_border;
   for (std::uint32_t v : from.border) from_border.push_back(ft.target[v]);

@@ -9,9 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 #include <numbers>
 
 #include "contour4d/core/errors.h"
+#include "contour4d/motion/chains.h"
 
 namespace c4d {
 
@@ -34,7 +37,90 @@ std::array<double, 3> flat_barycentric(Vec2 p, Vec2 a, Vec2 b, Vec2 c) {
   return {l0, l1, 1.0 - l0 - l1};
 }
 
+// Triangles' border edges (used by one triangle) as a map from each edge's first vertex to its second, in the
+// triangles' orientation; false when a vertex starts two border edges (not one simple loop per border).
+bool border_edges(const std::vector<Triangle>& tris, std::map<std::uint32_t, std::uint32_t>& next) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  next.clear();
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      if (uses[{std::min(a, b), std::max(a, b)}] == 1 && !next.emplace(a, b).second) return false;
+    }
+  return true;
+}
+
 }  // namespace
+
+bool is_disc(const std::vector<Triangle>& tris) {
+  std::map<std::uint32_t, std::uint32_t> next;
+  if (tris.empty() || !border_edges(tris, next) || next.empty()) return false;
+  std::size_t loop = 1;
+  for (std::uint32_t v = next.begin()->second; v != next.begin()->first; ++loop) {
+    const auto it = next.find(v);
+    if (it == next.end() || loop > next.size()) return false;
+    v = it->second;
+  }
+  std::vector<std::uint32_t> vertices;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      vertices.push_back(t[static_cast<std::size_t>(k)]);
+      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      edges[{std::min(a, b), std::max(a, b)}] = 1;
+    }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  return loop == next.size() &&
+         static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) + static_cast<long>(tris.size()) == 1;
+}
+
+Disc disc_beyond(const TriangleMesh& mesh, const std::vector<Vec3>& contour, Vec3 dir) {
+  constexpr double kOnPlane = 1e-5, kOnContour = 1e-3;  // mm
+  double plane = 0;
+  for (const Vec3& p : contour) plane += dot(p, dir);
+  plane /= static_cast<double>(std::max<std::size_t>(1, contour.size()));
+  const std::vector<Vec3>& y = mesh.positions;
+  std::vector<std::uint32_t> parent(y.size());
+  for (std::size_t v = 0; v < y.size(); ++v) parent[v] = static_cast<std::uint32_t>(v);
+  auto root = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::vector<const Triangle*> beyond;
+  for (const Triangle& t : mesh.triangles)
+    if (dot(y[t[0]], dir) >= plane - kOnPlane && dot(y[t[1]], dir) >= plane - kOnPlane &&
+        dot(y[t[2]], dir) >= plane - kOnPlane) {
+      beyond.push_back(&t);
+      parent[root(t[1])] = root(t[0]);
+      parent[root(t[2])] = root(t[0]);
+    }
+  std::map<std::uint32_t, std::vector<Triangle>> parts;
+  for (const Triangle* t : beyond) parts[root((*t)[0])].push_back(*t);
+  for (auto& [r, tris] : parts) {
+    std::map<std::uint32_t, std::uint32_t> next;
+    if (!border_edges(tris, next) || next.empty()) continue;
+    std::vector<Vec3> border_points;
+    for (const auto& [a, b] : next) border_points.push_back(y[a]);
+    bool on_contour = true;
+    for (const Vec3& p : border_points) {
+      std::int32_t hint = -1;
+      on_contour = on_contour && norm(closest_on_loop(contour, p, hint) - p) <= kOnContour;
+    }
+    if (!on_contour || !is_disc(tris)) continue;
+    Disc d;
+    d.triangles = std::move(tris);
+    d.border.push_back(next.begin()->first);
+    for (std::uint32_t v = next.begin()->second; v != d.border.front(); v = next[v]) d.border.push_back(v);
+    return d;
+  }
+  return {};
+}
 
 std::vector<Vec2> flatten_disc(const std::vector<Vec3>& x, const Disc& disc, const std::vector<double>& turns) {
   constexpr int kBorder = -2, kOutside = -1;

@@ -21,6 +21,15 @@ struct Disc {
   std::vector<std::uint32_t> border;
 };
 
+//! Whether `triangles` form a disc: one border loop and Euler characteristic 1.
+bool is_disc(const std::vector<Triangle>& triangles);
+
+//! The part of `mesh` beyond the closed planar `contour` (`dir` points from its plane into that part): the
+//! triangles with every vertex on or beyond the plane (within 1e-5 mm), the connected part whose border lies on
+//! the contour (within 1e-3 mm), as a disc with its border loop. Empty when there is no such disc. On a frame's
+//! own one-frame surface and its last contour: the dome that closes the end there.
+Disc disc_beyond(const TriangleMesh& mesh, const std::vector<Vec3>& contour, Vec3 dir);
+
 //! The disc's vertices on the unit disc (the others of `x` at (0, 0)): the border vertex border[k] at angle
 //! 2π·turns[k] on the unit circle, each inner vertex at the mean-value average of its neighbours (positive
 //! weights from x's angles). The turns go once around the circle in the border's order, either way.
