@@ -229,14 +229,9 @@ std::vector<double> turns_along(const std::vector<Vec3>& loop, const std::vector
   std::vector<double> out;
   out.reserve(points.size());
   for (const Vec3 p : points) {
-    double best = std::numeric_limits<double>::infinity(), at = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec3 a = loop[k], e = loop[(k + 1) % n] - a;
-      const double ee = dot(e, e);
-      const double s = ee > 0 ? std::clamp(dot(p - a, e) / ee, 0.0, 1.0) : 0.0;
-      const double d = norm(a + s * e - p);
-      if (d < best) best = d, at = start[k] + s * std::sqrt(ee);
-    }
+    std::int32_t segment = -1;  // every segment tried (closest_on_loop), the closest one stored here
+    const Vec3 q = closest_on_loop(loop, p, segment);
+    const double at = start[static_cast<std::size_t>(segment)] + norm(q - loop[static_cast<std::size_t>(segment)]);
     out.push_back(length > 0 ? std::fmod(at / length, 1.0) : 0.0);
   }
   return out;

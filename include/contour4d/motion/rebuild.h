@@ -6,7 +6,9 @@
 //! slices, contours per slice, nesting and links), it is built from its own contours with the plan's counts
 //! and triangles: the same mesh by construction, no frame waiting for another, so the frames run in parallel
 //! and the output does not depend on the thread count. The plan frame is, of the frames whose slices hold as
-//! many contours as frame 0's, the one with the shortest contours (the others stretch its triangles).
+//! many contours as frame 0's, the one whose total contour length is the median (the others stretch or squeeze
+//! its triangles by at most half the cycle's range). A frame that does not fit, or whose plan mesh lies off its
+//! own surface or is squeezed, is left to the caller (reconstruct4d.h carries it).
 
 #include <cstddef>
 #include <functional>
