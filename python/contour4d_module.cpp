@@ -332,12 +332,12 @@ py::dict load(const std::filesystem::path& path) {
 }
 
 py::dict pack(const py::object& input, const std::optional<std::filesystem::path>& output, double tolerance,
-              const std::string& error, std::size_t controls, std::size_t resample, const std::string& interp,
-              bool gltf, bool gltf_step, bool gltf_quantized) {
+              double normal_p99, double step, std::size_t resample, const std::string& interp, bool gltf,
+              bool gltf_step, bool gltf_quantized) {
   PackRunOptions o;
   o.tolerance = tolerance;
-  o.error = error;
-  o.controls = controls;
+  o.step = step;
+  o.normal_p99 = normal_p99;
   o.resample = resample;
   o.interp = interp;
   o.gltf = gltf;
@@ -364,9 +364,8 @@ py::dict pack(const py::object& input, const std::optional<std::filesystem::path
   return py::dict("path"_a = out.empty() ? py::object(py::none()) : py::str(out.string()),
                   "model"_a = py::bytes(run.c4d), "bytes"_a = run.c4d.size(), "glb_bytes"_a = run.glb.size(),
                   "payload_bytes_before_compression"_a = run.raw_payload, "payload_bytes_stored"_a = run.stored_payload,
-                  "max_error_mm"_a = st.max_error, "rms_error_mm"_a = st.rms_error,
-                  "max_surface_error_mm"_a = st.max_surface_error, "control_vertices"_a = run.model.control.size(),
-                  "corrected_vertex_frames"_a = st.corrected_vertices);
+                  "max_error_mm"_a = st.max_error, "rms_error_mm"_a = st.rms_error, "bound_mm"_a = run.model.tolerance,
+                  "step_mm"_a = run.model.step, "normal_p99_deg"_a = st.normal_p99, "normal_max_deg"_a = st.normal_max);
 }
 
 py::dict unpack(const py::object& model, const std::optional<std::filesystem::path>& output, std::size_t resample,
@@ -379,7 +378,7 @@ py::dict unpack(const py::object& model, const std::optional<std::filesystem::pa
   {
     py::gil_scoped_release release;
     const CompactModel m = is_bytes ? parse_model_c4d(bytes, "model.c4d") : read_model_c4d(path);
-    seq = resample_if(compact_decode(m), resample, interp);
+    seq = resample_if(decode_model_c4d(m, is_bytes ? "model.c4d" : path.string()), resample, interp);
     if (output) {
       OutputDir out(*output);
       write_mesh_sequence(out, seq, "unpacked from " + path.filename().string(), parse_mesh_formats(format));
@@ -420,8 +419,8 @@ PYBIND11_MODULE(contour4d, m) {
         "Measures a reconstruction folder as `contour4d evaluate` does; returns evaluation.json's content as a dict\n"
         "(written to json= when given).");
   m.def("load", &load, "path"_a, "Reads a reconstruction folder (mesh.pvd, frames/) into the mesh dict.");
-  m.def("pack", &pack, "input"_a, "output"_a = py::none(), "tolerance"_a = 0.05, "error"_a = "vertex",
-        "controls"_a = 600, "resample"_a = 0, "interp"_a = "catmull-rom", "gltf"_a = true, "gltf_step"_a = false,
+  m.def("pack", &pack, "input"_a, "output"_a = py::none(), "tolerance"_a = 0.05, "normal_p99"_a = 1.5,
+        "step"_a = 0.0125, "resample"_a = 0, "interp"_a = "catmull-rom", "gltf"_a = true, "gltf_step"_a = false,
         "gltf_quantized"_a = false,
         "Packs a reconstruction folder (or a mesh dict) into model.c4d as `contour4d pack` does; written to output=\n"
         "(default INPUT/model.c4d for a folder) with model.glb beside it. Returns the figures and the bytes.");

@@ -52,7 +52,7 @@ int run_render(const RenderArgs& a) {
   MeshSequence seq;
   if (std::filesystem::is_regular_file(in)) {
     model = read_model_c4d(in);
-    seq = compact_decode(model);
+    seq = decode_model_c4d(model, in.string());
   } else {
     seq = load_mesh_sequence(in);
     if (!a.tessellated || a.bench > 0) model = compact_encode(seq);

@@ -20,8 +20,8 @@ PackRun pack_run(const MeshSequence& seq, const PackRunOptions& options) {
   run.input = resample_if(seq, options.resample, options.interp);
   CompactOptions opt;
   opt.tolerance = options.tolerance;
-  opt.control_vertices = options.controls;
-  opt.error = options.error == "surface" ? CompactError::Surface : CompactError::Vertex;
+  opt.step = options.step;
+  opt.normal_p99 = options.normal_p99;
   run.model = compact_encode(run.input, opt, nullptr, &run.stats);
   const ModelC4dWriteOptions write;  // zstd level 19 (model_c4d.h)
   run.c4d = serialize_model_c4d(run.model, write);

@@ -29,28 +29,18 @@ const GlFailure kFailure{"headless OpenGL: ",
 [[noreturn]] void fail(const std::string& what) { gl_fail(kFailure, what); }
 
 const char* kCompactVertex = R"(#version 430 core
-layout(location = 0) in vec3 base;
-layout(location = 1) in uvec4 ids0;
-layout(location = 2) in uvec4 ids1;
-layout(location = 3) in vec4 w0;
-layout(location = 4) in vec4 w1;
-uniform samplerBuffer motion;   // control displacement, texel frame * nc + control
-uniform int nc;
-uniform ivec4 frames;           // up to four frames blended for the current time
-uniform vec4 fw;                // their weights (linear: two, Catmull-Rom: four)
+layout(location = 0) in vec3 base;  // frame 0
+uniform samplerBuffer motion;       // displacement from frame 0, texel frame * nv + vertex
+uniform int nv;
+uniform ivec4 frames;               // up to four frames blended for the current time
+uniform vec4 fw;                    // their weights, summing to 1 (linear: two, Catmull-Rom: four)
 uniform mat4 mv;
 uniform mat4 proj;
 out vec3 vpos;
-vec3 disp(int f) {
-  int o = f * nc;
-  vec3 d = vec3(0.0);
-  for (int j = 0; j < 4; ++j) d += w0[j] * texelFetch(motion, o + int(ids0[j])).xyz;
-  for (int j = 0; j < 4; ++j) d += w1[j] * texelFetch(motion, o + int(ids1[j])).xyz;
-  return d;
-}
 void main() {
   vec3 p = base;
-  for (int k = 0; k < 4; ++k) if (fw[k] != 0.0) p += fw[k] * disp(frames[k]);
+  for (int k = 0; k < 4; ++k)
+    if (fw[k] != 0.0) p += fw[k] * texelFetch(motion, frames[k] * nv + gl_VertexID).xyz;
   vec4 q = mv * vec4(p, 1.0);
   vpos = q.xyz;
   gl_Position = proj * q;
@@ -65,12 +55,12 @@ struct OffscreenRenderer::Impl {
   EGLContext ctx = EGL_NO_CONTEXT;
   GLuint fbo = 0, color = 0, depth = 0;
   GLuint classical_prog = 0, compact_prog = 0;
-  GLuint vao = 0, vbo = 0, ebo = 0, wbo = 0, tbo = 0, tex = 0;
+  GLuint vao = 0, vbo = 0, ebo = 0, tbo = 0, tex = 0;
   std::size_t index_count = 0;
   MeshSequence frames;  // classical: all frames on the CPU
   std::vector<float> staging;
   std::vector<double> times;  // compact
-  std::size_t nc = 0;
+  std::size_t nv = 0;         // compact: vertices per frame in the motion texture
   Mat4 mv{}, proj{};
   Vec3 center{};
   std::unique_ptr<PatchRenderer> patches;  // created on first use, destroyed before the context
@@ -105,10 +95,10 @@ struct OffscreenRenderer::Impl {
   }
 
   void reset_buffers() {
-    const GLuint bufs[] = {vbo, ebo, wbo, tbo};
+    const GLuint bufs[] = {vbo, ebo, tbo};
     for (GLuint b : bufs)
       if (b) glDeleteBuffers(1, &b);
-    vbo = ebo = wbo = tbo = 0;
+    vbo = ebo = tbo = 0;
     if (tex) glDeleteTextures(1, &tex);
     tex = 0;
     if (vao) glDeleteVertexArrays(1, &vao);
@@ -251,54 +241,33 @@ std::size_t OffscreenRenderer::draw_classical(std::size_t f) {
 
 void OffscreenRenderer::load_compact(const CompactModel& model) {
   Impl& s = *impl_;
-  const MeshSequence seq = compact_decode(model);  // frame 0, triangles, and the bounds of all frames
+  const MeshSequence seq = compact_decode(model);  // what unpack writes, on the model's grid
   s.fit_camera(seq.positions);
   s.reset_buffers();
   s.times = seq.times_ms;
   const std::size_t nv = model.vertex_count, nf = model.frame_count;
-  s.nc = model.control.size();
-  // Frame 0 as the decoder sees it before corrections (the GPU carries the control motion only).
-  const ControlWeights w = control_weights(seq.positions[0], model.control, static_cast<int>(model.neighbours));
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  if (nf * nv > static_cast<std::size_t>(max_texels))
+    throw InvalidInput(ErrorCode::BadMesh, {},
+                       std::to_string(nf) + " frames of " + std::to_string(nv) + " vertices exceed this GPU's " +
+                           std::to_string(max_texels) + " texels of motion",
+                       "draw fewer frames (contour4d pack --resample N) or use render --classical");
+  s.nv = nv;
   std::vector<float> base(nv * 3);
-  {
-    // Decoded frame 0 includes its corrections; use it as the base (frame-0 corrections are exact).
-    for (std::size_t v = 0; v < nv; ++v)
-      for (int c = 0; c < 3; ++c) base[3 * v + c] = static_cast<float>(seq.positions[0][v][c] - s.center[c]);
-  }
-  struct Attr {
-    std::uint32_t ids[8];
-    float w[8];
-  };
-  std::vector<Attr> attrs(nv);
-  const std::size_t k = static_cast<std::size_t>(w.k);
-  for (std::size_t v = 0; v < nv; ++v) {
-    Attr a{};
-    for (std::size_t j = 0; j < std::min<std::size_t>(k, 8); ++j) {
-      a.ids[j] = w.ids[v * k + j];
-      a.w[j] = w.weights[v * k + j];
-    }
-    attrs[v] = a;
-  }
-  // Control displacements of every frame relative to frame 0 (texel f * nc + c).
-  std::vector<float> motion(nf * s.nc * 4, 0.0f);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int c = 0; c < 3; ++c) base[3 * v + c] = static_cast<float>(seq.positions[0][v][c] - s.center[c]);
+  std::vector<float> motion(nf * nv * 3);  // every frame's displacement from frame 0 (texel f * nv + v)
   for (std::size_t f = 0; f < nf; ++f)
-    for (std::size_t c = 0; c < s.nc; ++c) {
-      const Vec3 d = seq.positions[f][model.control[c]] - seq.positions[0][model.control[c]];
-      for (int i = 0; i < 3; ++i) motion[(f * s.nc + c) * 4 + i] = static_cast<float>(d[i]);
-    }
+    for (std::size_t v = 0; v < nv; ++v)
+      for (int c = 0; c < 3; ++c)
+        motion[(f * nv + v) * 3 + c] = static_cast<float>(seq.positions[f][v][c] - seq.positions[0][v][c]);
+  glBindVertexArray(s.vao);
   glGenBuffers(1, &s.vbo);
   glBindBuffer(GL_ARRAY_BUFFER, s.vbo);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(base.size() * 4), base.data(), GL_STATIC_DRAW);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
   glEnableVertexAttribArray(0);
-  glGenBuffers(1, &s.wbo);
-  glBindBuffer(GL_ARRAY_BUFFER, s.wbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(attrs.size() * sizeof(Attr)), attrs.data(), GL_STATIC_DRAW);
-  glVertexAttribIPointer(1, 4, GL_UNSIGNED_INT, sizeof(Attr), reinterpret_cast<void*>(0));
-  glVertexAttribIPointer(2, 4, GL_UNSIGNED_INT, sizeof(Attr), reinterpret_cast<void*>(16));
-  glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(Attr), reinterpret_cast<void*>(32));
-  glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, sizeof(Attr), reinterpret_cast<void*>(48));
-  for (GLuint i = 1; i <= 4; ++i) glEnableVertexAttribArray(i);
   glGenBuffers(1, &s.ebo);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.ebo);
   s.index_count = seq.triangles.size() * 3;
@@ -309,7 +278,7 @@ void OffscreenRenderer::load_compact(const CompactModel& model) {
   glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(motion.size() * 4), motion.data(), GL_STATIC_DRAW);
   glGenTextures(1, &s.tex);
   glBindTexture(GL_TEXTURE_BUFFER, s.tex);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, s.tbo);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGB32F, s.tbo);
 }
 
 std::size_t OffscreenRenderer::draw_compact(double t_ms) {
@@ -321,7 +290,7 @@ std::size_t OffscreenRenderer::draw_compact(double t_ms) {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_BUFFER, s.tex);
   glUniform1i(glGetUniformLocation(s.compact_prog, "motion"), 0);
-  glUniform1i(glGetUniformLocation(s.compact_prog, "nc"), static_cast<GLint>(s.nc));
+  glUniform1i(glGetUniformLocation(s.compact_prog, "nv"), static_cast<GLint>(s.nv));
   glUniform4iv(glGetUniformLocation(s.compact_prog, "frames"), 1, fr.id);
   glUniform4fv(glGetUniformLocation(s.compact_prog, "fw"), 1, fr.w);
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.index_count), GL_UNSIGNED_INT, nullptr);

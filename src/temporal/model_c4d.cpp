@@ -1,6 +1,6 @@
 // model.c4d: the compact 4D model on disk (docs/compact.md). Explicit little-endian fields, so the
 // file is the same on every machine; the checksum catches truncation and bit rot before decoding; the
-// payload is one zstd frame (version 3, flag bit 1), decompressed into a buffer of its declared size.
+// payload is one zstd frame (flag bit 1), decompressed into a buffer of its declared size.
 #include "contour4d/temporal/model_c4d.h"
 
 #include <zstd.h>
@@ -18,8 +18,7 @@ namespace {
 
 constexpr char kMagic[8] = {'C', '4', 'D', 'M', 'O', 'D', 'E', 'L'};
 constexpr std::size_t kHeader = kModelC4dHeaderBytes;
-constexpr std::uint32_t kFlagSurface = 1u;  // bit 0: surface corrections (CompactError::Surface)
-constexpr std::uint32_t kFlagZstd = 2u;     // bit 1: the stored payload is one zstd frame
+constexpr std::uint32_t kFlagZstd = 2u;  // bit 1: the stored payload is one zstd frame
 // Every zstd block yields at most ZSTD_BLOCKSIZE_MAX bytes and takes at least 4 (3-byte header + 1
 // byte of an RLE block), so a frame of n bytes cannot hold more than this many bytes per byte of it.
 constexpr std::uint64_t kMaxZstdRatio = ZSTD_BLOCKSIZE_MAX / 4;
@@ -34,7 +33,7 @@ struct Buffer {
   std::size_t size = 0;
 };
 
-// The version-2 payload inside a stored zstd frame: exactly one frame, its content size declared,
+// The payload inside a stored zstd frame: exactly one frame, its content size declared,
 // plausible for its length and at most kModelC4dMaxPayload; decompressed to exactly that size.
 Buffer decompress_payload(std::string_view stored, const std::string& name) {
   const unsigned long long content = ZSTD_getFrameContentSize(stored.data(), stored.size());
@@ -112,15 +111,6 @@ struct Reader {
     pos += static_cast<std::size_t>(n);
     return b;
   }
-  std::uint64_t varint() {
-    std::uint64_t v = 0;
-    for (int shift = 0; shift < 64; shift += 7) {
-      const std::uint8_t b = static_cast<std::uint8_t>(u(1));
-      v |= static_cast<std::uint64_t>(b & 0x7f) << shift;
-      if ((b & 0x80) == 0) return v;
-    }
-    damaged(name, "overlong varint");
-  }
 };
 
 }  // namespace
@@ -139,30 +129,15 @@ std::string serialize_model_c4d(const CompactModel& m, const ModelC4dWriteOption
   put_u32(p, m.vertex_count);
   put_u32(p, m.triangle_count);
   put_u32(p, m.frame_count);
-  put_u32(p, m.neighbours);
   for (double o : m.origin) put_f64(p, o);
-  put_f64(p, m.grid_step);
-  put_f64(p, m.motion_step);
-  put_f64(p, m.residual_step);
+  put_f64(p, m.step);
   put_f64(p, m.tolerance);
   for (double t : m.times_ms) put_f64(p, t);
-  put_u32(p, static_cast<std::uint32_t>(m.control.size()));
-  std::uint32_t last = 0;
-  for (std::size_t i = 0; i < m.control.size(); ++i) {  // increasing ids as varint gaps
-    std::uint64_t gap = i == 0 ? m.control[0] : m.control[i] - last - 1;
-    while (gap >= 0x80) {
-      p.push_back(static_cast<char>((gap & 0x7f) | 0x80));
-      gap >>= 7;
-    }
-    p.push_back(static_cast<char>(gap));
-    last = m.control[i];
-  }
   put_block(p, m.indices);
   put_block(p, m.positions);
-  put_block(p, m.motion);
-  for (const auto& c : m.corrections) put_block(p, c);
+  for (const auto& b : m.motion) put_block(p, b);
 
-  std::uint32_t flags = m.error == CompactError::Surface ? kFlagSurface : 0u;
+  std::uint32_t flags = 0u;
   if (options.compress) {  // one zstd frame (ZSTD_compress: single-threaded, content size in the header)
     std::string z(ZSTD_compressBound(p.size()), '\0');
     const std::size_t n = ZSTD_compress(z.data(), z.size(), p.data(), p.size(), options.level);
@@ -195,14 +170,18 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
                   "the file is incomplete: run `contour4d pack` again");
   Reader h{bytes, 8, name};
   const std::uint32_t version = h.u32();
-  if (version < 1 || version > kModelC4dVersion)
+  if (version >= 1 && version < kModelC4dVersion)
     throw IoError(ErrorCode::Format, {name},
-                  "model.c4d version " + std::to_string(version) + " is not supported (this build reads 1 to " +
+                  "model.c4d version " + std::to_string(version) +
+                      " holds the control-vertex model of an older contour4d, which this build no longer reads",
+                  "pack the reconstruction's output folder again: contour4d pack OUTDIR");
+  if (version != kModelC4dVersion)
+    throw IoError(ErrorCode::Format, {name},
+                  "model.c4d version " + std::to_string(version) + " is not supported (this build reads version " +
                       std::to_string(kModelC4dVersion) + ")",
                   "pack the 4D mesh again with this contour4d");
   const std::uint32_t flags = h.u32();
-  const std::uint32_t allowed = version == 1 ? 0u : version == 2 ? kFlagSurface : kFlagSurface | kFlagZstd;
-  if ((flags & ~allowed) != 0)
+  if ((flags & ~kFlagZstd) != 0)
     throw IoError(ErrorCode::Format, {name}, "model.c4d flags " + std::to_string(flags) + " are not supported",
                   "pack the 4D mesh again with this contour4d");
   const std::uint64_t size = h.u(8);
@@ -220,32 +199,19 @@ CompactModel parse_model_c4d(std::string_view bytes, const std::string& name) {
       (flags & kFlagZstd) ? std::string_view(decompressed.data.get(), decompressed.size) : stored;
   Reader r{payload, 0, name};
   CompactModel m;
-  m.error = (flags & kFlagSurface) ? CompactError::Surface : CompactError::Vertex;
   m.vertex_count = r.u32();
   m.triangle_count = r.u32();
   m.frame_count = r.u32();
-  m.neighbours = r.u32();
   for (double& o : m.origin) o = r.f64();
-  m.grid_step = r.f64();
-  m.motion_step = r.f64();
-  m.residual_step = r.f64();
+  m.step = r.f64();
   m.tolerance = r.f64();
+  if (m.frame_count == 0) damaged(name, "the model has no frames");
   r.need(static_cast<std::size_t>(m.frame_count) * 8);
   for (std::uint32_t f = 0; f < m.frame_count; ++f) m.times_ms.push_back(r.f64());
-  const std::uint32_t nc = r.u32();
-  if (nc > m.vertex_count) damaged(name, "more control vertices than vertices");
-  std::uint64_t id = 0;
-  for (std::uint32_t i = 0; i < nc; ++i) {
-    const std::uint64_t gap = r.varint();  // checked before adding, so a huge gap cannot wrap around
-    if (gap >= m.vertex_count) damaged(name, "control vertex id out of range");
-    id = (i == 0 ? 0 : id + 1) + gap;
-    if (id >= m.vertex_count) damaged(name, "control vertex id out of range");
-    m.control.push_back(static_cast<std::uint32_t>(id));
-  }
   m.indices = r.block();
   m.positions = r.block();
-  m.motion = r.block();
-  for (std::uint32_t f = 0; f < m.frame_count; ++f) m.corrections.push_back(r.block());
+  r.need(static_cast<std::size_t>(m.frame_count - 1) * 8);  // one length per motion block at least
+  for (std::uint32_t f = 1; f < m.frame_count; ++f) m.motion.push_back(r.block());
   if (r.pos != payload.size()) damaged(name, "trailing bytes after the last frame");
   return m;
 }
@@ -257,6 +223,20 @@ void write_model_c4d(const std::filesystem::path& path, const CompactModel& mode
 
 CompactModel read_model_c4d(const std::filesystem::path& path) {
   return parse_model_c4d(read_file(path), path.string());
+}
+
+MeshSequence decode_model_c4d(const CompactModel& model, const std::string& name) {
+  try {
+    return compact_decode(model);
+  } catch (const InvalidInput& e) {
+    Location where{name};
+    where.frame = e.where().frame;
+    throw IoError(ErrorCode::Parse, where, e.detail(), e.hint());
+  }
+}
+
+MeshSequence read_model_c4d_sequence(const std::filesystem::path& path) {
+  return decode_model_c4d(read_model_c4d(path), path.string());
 }
 
 }  // namespace c4d

@@ -43,7 +43,7 @@ MeshSequence to_mesh_sequence(const MeshFrames& frames, const std::string& sourc
 }
 
 MeshSequence load_mesh_sequence(const std::filesystem::path& path) {
-  if (std::filesystem::is_regular_file(path)) return compact_decode(read_model_c4d(path));
+  if (std::filesystem::is_regular_file(path)) return read_model_c4d_sequence(path);
   return to_mesh_sequence(read_mesh_frames(path), path.string());
 }
 

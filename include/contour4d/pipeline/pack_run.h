@@ -14,8 +14,8 @@ namespace c4d {
 //! What a user sets for packing (the command line's names in brackets; defaults as there).
 struct PackRunOptions {
   double tolerance = 0.05;             //!< [--tolerance] max error of any vertex in any frame (mm)
-  std::string error = "vertex";        //!< [--error] "vertex" (same vertex) or "surface" (to the surface)
-  std::size_t controls = 600;          //!< [--controls] control vertices carrying the motion
+  double normal_p99 = 1.5;             //!< [--normal-p99] bound on the facet-normal error, worst frame's p99 (deg)
+  double step = 0.0125;                //!< [--step] coarsest grid step tried (mm)
   std::size_t resample = 0;            //!< [--resample] frames after resampling in time; 0: keep
   std::string interp = "catmull-rom";  //!< [--interp] "catmull-rom" (periodic), "linear" or "step"
   bool gltf = true;                    //!< [--no-gltf] also make the .glb

@@ -10,14 +10,15 @@
 #include <string>
 #include <string_view>
 
+#include "contour4d/core/mesh.h"
 #include "contour4d/temporal/compact.h"
 
 namespace c4d {
 
-//! Current format version written by serialize_model_c4d. 3: header flag bit 0 = surface corrections
-//! (CompactError::Surface), bit 1 = the stored payload is one zstd frame whose content is the
-//! version-2 payload. Versions 1 (no flags) and 2 (bit 0 only) are read too.
-constexpr std::uint32_t kModelC4dVersion = 3;
+//! The format version written and read: 4 (frame 0 and every frame's move on one grid; header flag bit 1 =
+//! the stored payload is one zstd frame). Versions 1–3 (the control-vertex model) are refused with a
+//! message asking to pack again.
+constexpr std::uint32_t kModelC4dVersion = 4;
 
 //! Largest decompressed payload the reader accepts (1 GiB); a zstd frame declaring more is refused
 //! before anything is allocated.
@@ -50,5 +51,11 @@ void write_model_c4d(const std::filesystem::path& path, const CompactModel& mode
 
 //! Reads a model.c4d file. \throw IoError (FileNotFound, Format, Parse).
 CompactModel read_model_c4d(const std::filesystem::path& path);
+
+//! compact_decode for a model read from `name`: a stream that does not decode is an IoError (Parse) naming it.
+MeshSequence decode_model_c4d(const CompactModel& model, const std::string& name);
+
+//! Reads and decodes a model.c4d file to its mesh sequence. \throw IoError (FileNotFound, Format, Parse).
+MeshSequence read_model_c4d_sequence(const std::filesystem::path& path);
 
 }  // namespace c4d
