@@ -9,7 +9,11 @@
 //      the tessellation shaders rebuild the surface (the pipeline of `contour4d view`).
 //    Scenes: a large viewport, and a small one where the rasteriser's share is small and the
 //    upload dominates, as with Miara et al.'s discrete GPU behind a bus.
-// Usage: playback_bench [subdivisions=6] [frames=20] [draws=30] [base_triangles=2000] [level=6]
+//  Then the default path of `contour4d render` on the fine mesh itself: classical (each frame's mesh
+//  uploaded) against compact (model.c4d decoded, frame 0 and every frame's displacement uploaded once,
+//  blended in the vertex shader), ms per frame and frames per second (bench/gpu_check.sh runs this part).
+// Usage: playback_bench [subdivisions=6] [frames=20] [draws=30] [base_triangles=2000] [level=6] [tables=all|vertex]
+//  (subdivisions 7: 327,680 triangles; 8: 1,310,720.)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -84,6 +88,34 @@ void table2(const c4d::MeshSequence& classical, const c4d::PatchMesh& pm, int le
               static_cast<double>(bc) / static_cast<double>(bk));
 }
 
+// The fine mesh through `contour4d render`'s two paths at 800 x 600: classical against compact.
+void vertex_path(const c4d::MeshSequence& seq, const c4d::CompactModel& model, int draws) {
+  using namespace c4d;
+  RenderOptions o;
+  o.width = 800;
+  o.height = 600;
+  OffscreenRenderer r(o);
+  const std::size_t frames = seq.positions.size();
+  r.load_classical(seq);
+  r.draw_classical(0);
+  r.finish();
+  auto t0 = clock_type::now();
+  for (int i = 0; i < draws; ++i) r.draw_classical(static_cast<std::size_t>(i) % frames);
+  r.finish();
+  const double mc = std::chrono::duration<double, std::milli>(clock_type::now() - t0).count() / draws;
+  r.load_compact(model);
+  r.draw_compact(0.0);
+  r.finish();
+  t0 = clock_type::now();
+  for (int i = 0; i < draws; ++i) r.draw_compact(seq.times_ms[static_cast<std::size_t>(i) % frames] + 10.0);
+  r.finish();
+  const double mk = std::chrono::duration<double, std::milli>(clock_type::now() - t0).count() / draws;
+  std::printf("Render paths  %s, %zu triangles, %d draws each, 800x600\n", r.description().c_str(),
+              seq.triangles.size(), draws);
+  std::printf("  classical %8.3f ms/frame (%6.0f frames/s)\n", mc, 1000.0 / mc);
+  std::printf("  compact   %8.3f ms/frame (%6.0f frames/s), speed-up %.2fx\n", mk, 1000.0 / mk, mc / mk);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -100,7 +132,7 @@ int main(int argc, char** argv) {
   const CompactModel model = compact_encode(seq, {}, nullptr, &st);
   const double enc_s = std::chrono::duration<double>(clock_type::now() - t0).count();
   const std::size_t c4d = serialize_model_c4d(model).size();
-  const std::size_t glb = gltf_glb_bytes(seq).size();
+  const std::size_t glb = argc > 6 && std::string(argv[6]) == "vertex" ? 0 : gltf_glb_bytes(seq).size();
   const double vtp = static_cast<double>(nv * 24 + nt * 32) * frames,
                ply = static_cast<double>(nv * 12 + nt * 13) * frames;
   std::printf("Table I  %zu vertices, %zu triangles, %zu frames (encode %.2f s)\n", nv, nt, frames, enc_s);
@@ -111,6 +143,8 @@ int main(int argc, char** argv) {
       "%.2f deg\n",
       c4d, st.index_bytes, st.position_bytes, st.motion_bytes, st.max_error, st.normal_p99);
   std::printf("  model.glb      %12zu B\n", glb);
+  vertex_path(seq, model, draws);
+  if (argc > 6 && std::string(argv[6]) == "vertex") return 0;
 
   t0 = clock_type::now();
   PatchOptions po;
