@@ -1,5 +1,5 @@
-// `contour4d view`: the interactive tessellated playback window (GLFW), or with --snapshot the same
-// pipeline offscreen through EGL. All drawing is in the contour4d_render library.
+// `contour4d view`: the interactive playback window (GLFW), or with --snapshot the same pipeline
+// offscreen through EGL. All drawing is in the contour4d_render library.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -33,6 +33,8 @@ struct ViewArgs {
   bool wireframe = false;
   bool section = false;
   bool no_maps = false;
+  bool tessellated = false;
+  bool no_hud = false;
   int section_slice = -1;
   double time_ms = 0.0;
   double yaw = -65.0;
@@ -52,12 +54,6 @@ int run_view(const ViewArgs& a) {
   PatchOptions po;
   po.grid = a.grid;
   po.base_triangles = a.base_triangles;
-  const PatchMesh pm = build_patch_mesh(seq, po);
-  std::cout << fmt::format(
-      "base mesh {} triangles ({} fine), {} frames, displacement maps {}x{} lattice, "
-      "max |d| {:.2f} mm, {} samples missed the surface\n",
-      pm.triangles.size(), seq.triangles.size(), pm.positions.size(), a.grid, a.grid, pm.max_abs_displacement,
-      pm.missed);
   // Input contours for the section view: --contours, else contours.json beside or above the input.
   std::unique_ptr<Sequence> contours;
   std::filesystem::path cpath = a.contours;
@@ -83,7 +79,10 @@ int run_view(const ViewArgs& a) {
   st.camera.pitch_deg = a.pitch;
   st.camera.zoom = a.zoom;
   st.interpolation = a.interp == "catmull-rom" ? TimeInterpolation::CatmullRomPeriodic : TimeInterpolation::Linear;
-  st.t_ms = pm.times_ms.front() + a.time_ms;
+  st.t_ms = seq.times_ms.front() + a.time_ms;
+  st.mesh = !a.tessellated;
+  st.hud = !a.no_hud;
+  st.hud_footer = kViewerKeys;
   int w = 0, h = 0;
   if (std::sscanf(a.size.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0)
     throw InvalidInput(ErrorCode::Usage, {}, "bad --size '" + a.size + "'", "use WIDTHxHEIGHT, e.g. 1280x800");
@@ -92,7 +91,16 @@ int run_view(const ViewArgs& a) {
     ro.width = w;
     ro.height = h;
     OffscreenRenderer r(ro);
-    r.patches().load(pm);
+    r.patches().load_mesh(seq);
+    if (a.tessellated) {
+      const PatchMesh pm = build_patch_mesh(seq, po);
+      std::cout << fmt::format(
+          "base mesh {} triangles ({} fine), {} frames, displacement maps {}x{} lattice, max |d| {:.2f} mm, {} "
+          "samples missed the surface\n",
+          pm.triangles.size(), seq.triangles.size(), pm.positions.size(), a.grid, a.grid, pm.max_abs_displacement,
+          pm.missed);
+      r.patches().load(pm);
+    }
     if (contours) r.patches().set_contours(*contours);
     const std::uint64_t tris = r.patches().count_triangles([&] {
       PatchDrawState s = st;
@@ -102,8 +110,8 @@ int run_view(const ViewArgs& a) {
     }());
     r.draw_patches(st);
     write_png(a.snapshot, r.read_image());
-    std::cout << fmt::format("wrote {} ({}x{}, {} triangles at level {}; {})\n", a.snapshot, w, h, tris, a.level,
-                             r.description());
+    std::cout << fmt::format("wrote {} ({}x{}, {} triangles{}; {})\n", a.snapshot, w, h, tris,
+                             a.tessellated ? fmt::format(" at level {}", a.level) : std::string(), r.description());
     return 0;
   }
   ViewerOptions vo;
@@ -112,7 +120,8 @@ int run_view(const ViewArgs& a) {
   vo.initial = st;
   vo.max_seconds = a.seconds;
   vo.title = "contour4d view " + in.filename().string();
-  run_viewer(pm, contours.get(), vo);
+  vo.patches = po;
+  run_viewer(seq, contours.get(), vo);
   return 0;
 #endif
 }
@@ -122,17 +131,19 @@ int run_view(const ViewArgs& a) {
 void add_view_command(CLI::App& root, std::vector<Command>& commands) {
   CLI::App* app = root.add_subcommand(
       "view",
-      "Play a 4D mesh in a window (OpenGL 4.3, GLFW): a coarse base mesh and per-frame displacement maps\n"
-      "are uploaded once; tessellation shaders evaluate PN patches, add the maps and interpolate between\n"
-      "frames on the GPU; per frame only the time is sent. Keys: space play/pause, left/right scrub,\n"
-      "+/- speed, [ ] tessellation level, D maps on/off, W wireframe, S section plane with the input\n"
-      "contours (, . move it by one slice), I linear/Catmull-Rom, R reset view, Q quit; drag orbits,\n"
-      "wheel zooms; the title shows frames per second. --snapshot draws one image headless (EGL).");
+      "Play a 4D mesh in a window (OpenGL 4.3, GLFW), as `contour4d render` draws it: frame 0 and every\n"
+      "frame's displacement are uploaded once and blended on the GPU; per frame only the time is sent.\n"
+      "On screen: time, frame, volume, the volume curve of the cycle and the keys. Keys: space\n"
+      "play/pause, left/right one frame, +/- speed, T tessellated patches (Miara et al.: base mesh +\n"
+      "displacement maps; [ ] level, D maps on/off), H overlay, W wireframe, S section plane with the\n"
+      "input contours (, . move it by one slice), I linear/Catmull-Rom, R reset view, Q quit; drag\n"
+      "orbits, wheel zooms. --snapshot draws one image headless (EGL).");
   app->footer(
       "Examples:\n"
       "  contour4d view out                         # OUTDIR of `contour4d reconstruct`\n"
       "  contour4d view out/model.c4d --contours lv.json --section\n"
-      "  contour4d view out --snapshot view.png --wireframe --level 4   # no display needed\n");
+      "  contour4d view out --snapshot view.png --time 300   # no display needed\n"
+      "  contour4d view out --snapshot tess.png --tessellated --wireframe --level 4\n");
   auto args = std::make_shared<ViewArgs>();
   app->add_option("INPUT", args->input, "output folder of a reconstruction or a model.c4d")->required();
   app->add_option("--contours", args->contours,
@@ -153,7 +164,9 @@ void add_view_command(CLI::App& root, std::vector<Command>& commands) {
   app->add_flag("--section", args->section, "start with the section plane on");
   app->add_option("--section-slice", args->section_slice, "slice (0-based, sorted) of the section plane; -1: middle")
       ->default_val(-1);
-  app->add_flag("--no-maps", args->no_maps, "start without the displacement maps (smooth PN patches)");
+  app->add_flag("--tessellated", args->tessellated, "start with the tessellated patches (key T)");
+  app->add_flag("--no-maps", args->no_maps, "with the patches: start without the displacement maps (PN patches)");
+  app->add_flag("--no-hud", args->no_hud, "start without the on-screen information (key H)");
   app->add_option("--time", args->time_ms, "start time after the first frame (ms)")->default_val(0.0);
   app->add_option("--yaw", args->yaw, "camera azimuth about +z (degrees)")->default_val(-65.0);
   app->add_option("--pitch", args->pitch, "camera elevation (degrees)")->default_val(20.0);

@@ -15,8 +15,12 @@
 #include <numbers>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "contour4d/core/errors.h"
 #include "gl_util_internal.h"
+#include "hud_internal.h"
+#include "mesh_frames_internal.h"
 
 namespace c4d {
 namespace {
@@ -141,7 +145,12 @@ void main() { frag = vec4(color, 1.0); }
 }  // namespace
 
 struct PatchRenderer::Impl {
-  GLuint patch_prog = 0, line_prog = 0;
+  GLuint patch_prog = 0, line_prog = 0, mesh_prog = 0;
+  GLuint mesh_vao = 0;
+  MeshFramesBuffers mesh;
+  std::vector<double> mesh_times, volumes_ml;  // the decoded frames' times and volumes (overlay curve)
+  std::unique_ptr<Hud> hud;
+  bool has_center = false;  // the first load fixes the centre every upload is relative to
   GLuint vao = 0, ebo = 0, corner_buf = 0, corner_tex = 0, disp_buf = 0, disp_tex = 0, tri_tex = 0;
   GLuint line_vao = 0, line_vbo = 0, query = 0;
   std::size_t nb = 0, nt = 0, index_count = 0, bytes = 0;
@@ -173,6 +182,31 @@ struct PatchRenderer::Impl {
   }
 
   void set_uniforms(GLuint p) { use_program(p, mv, proj); }
+
+  void draw_patches(const PatchDrawState& st, const FrameBlend& fr, bool section, const GLfloat plane[4]);
+  void draw_mesh(const PatchDrawState& st, const FrameBlend& fr, const GLfloat* plane);
+
+  void fit(const std::vector<std::vector<Vec3>>& frames) {
+    if (has_center) return;
+    const auto [lo, hi] = frame_bounds(frames);
+    center = 0.5 * (lo + hi);
+    radius = std::max(0.5 * norm(hi - lo), 1e-6);
+    has_center = true;
+  }
+
+  void draw_overlay(const PatchDrawState& st, const FrameBlend& fr) {
+    HudContent c;
+    const std::vector<double>& t = mesh_times.empty() ? times : mesh_times;
+    c.lines.push_back(fmt::format(
+        "t = {:.0f} ms   frame {} of {}{}", st.t_ms - (t.empty() ? 0.0 : t.front()), fr.nearest + 1, t.size(),
+        volumes_ml.size() > fr.nearest ? fmt::format("   volume {:.1f} ml", volumes_ml[fr.nearest]) : std::string()));
+    c.lines.insert(c.lines.end(), st.hud_lines.begin(), st.hud_lines.end());
+    c.footer = st.hud_footer;
+    c.times_ms = mesh_times;
+    c.volumes_ml = volumes_ml;
+    c.t_ms = st.t_ms;
+    hud->draw(c, st.width, st.height);
+  }
 };
 
 PatchRenderer::PatchRenderer() : impl_(std::make_unique<Impl>()) {
@@ -184,8 +218,12 @@ PatchRenderer::PatchRenderer() : impl_(std::make_unique<Impl>()) {
                               "patch", kFailure);
   s.line_prog =
       link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kLineFragment}}, "contour line", kFailure);
+  s.mesh_prog = link_program({{GL_VERTEX_SHADER, kMeshFramesVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}},
+                             "decoded frames", kFailure);
+  s.hud = std::make_unique<Hud>(kFailure);
   glGenVertexArrays(1, &s.vao);
   glGenVertexArrays(1, &s.line_vao);
+  glGenVertexArrays(1, &s.mesh_vao);
   glGenQueries(1, &s.query);
 }
 
@@ -197,11 +235,15 @@ PatchRenderer::~PatchRenderer() {
   const GLuint texs[] = {s.corner_tex, s.disp_tex, s.tri_tex};
   for (GLuint t : texs)
     if (t) glDeleteTextures(1, &t);
+  release_mesh_frames(s.mesh);
+  s.hud.reset();
   glDeleteVertexArrays(1, &s.vao);
   glDeleteVertexArrays(1, &s.line_vao);
+  glDeleteVertexArrays(1, &s.mesh_vao);
   glDeleteQueries(1, &s.query);
   glDeleteProgram(s.patch_prog);
   glDeleteProgram(s.line_prog);
+  glDeleteProgram(s.mesh_prog);
 }
 
 void PatchRenderer::load(const PatchMesh& pm) {
@@ -213,9 +255,7 @@ void PatchRenderer::load(const PatchMesh& pm) {
   s.grid = pm.grid;
   s.times = pm.times_ms;
   const std::size_t nf = pm.positions.size();
-  const auto [lo, hi] = frame_bounds(pm.positions);
-  s.center = 0.5 * (lo + hi);
-  s.radius = std::max(0.5 * norm(hi - lo), 1e-6);
+  s.fit(pm.positions);
   std::vector<float> corners(nf * s.nb * 8);
   for (std::size_t f = 0; f < nf; ++f)
     for (std::size_t v = 0; v < s.nb; ++v) {
@@ -247,6 +287,21 @@ void PatchRenderer::load(const PatchMesh& pm) {
   if (static_cast<std::size_t>(max_texels) < pm.displacement.size())
     fail("displacement maps need " + std::to_string(pm.displacement.size()) + " texels, the driver allows " +
          std::to_string(max_texels) + " (use fewer base triangles or a smaller grid)");
+}
+
+void PatchRenderer::load_mesh(const MeshSequence& frames) {
+  Impl& s = *impl_;
+  if (frames.positions.empty() || frames.triangles.empty() || frames.positions[0].empty())
+    throw InvalidInput(ErrorCode::BadMesh, {}, "empty mesh sequence", "nothing to draw");
+  s.fit(frames.positions);
+  glBindVertexArray(s.mesh_vao);
+  release_mesh_frames(s.mesh);
+  s.mesh = upload_mesh_frames(frames, s.center, kFailure);
+  s.bytes += s.mesh.bytes;
+  s.mesh_times = frames.times_ms;
+  s.volumes_ml.clear();
+  for (std::size_t f = 0; f < frames.positions.size(); ++f)
+    s.volumes_ml.push_back(signed_volume(frames.frame(f)) / 1000.0);
 }
 
 void PatchRenderer::set_contours(const Sequence& seq) {
@@ -288,9 +343,10 @@ std::size_t PatchRenderer::static_bytes() const { return impl_->bytes; }
 
 std::size_t PatchRenderer::draw(const PatchDrawState& st) {
   Impl& s = *impl_;
-  if (s.index_count == 0) fail("draw before load");
+  if (st.mesh ? s.mesh.index_count == 0 : s.index_count == 0)
+    fail(st.mesh ? "draw of the decoded frames before load_mesh" : "draw of the patches before load");
   s.camera(st);
-  const FrameBlend fr = blend_frames(s.times, st.t_ms, st.interpolation);
+  const FrameBlend fr = blend_frames(st.mesh ? s.mesh_times : s.times, st.t_ms, st.interpolation);
   glViewport(0, 0, st.width, st.height);
   glClearColor(1, 1, 1, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -313,6 +369,32 @@ std::size_t PatchRenderer::draw(const PatchDrawState& st) {
     plane[3] = static_cast<float>(off);
     glEnable(GL_CLIP_DISTANCE0);
   }
+  if (st.mesh) {
+    s.draw_mesh(st, fr, section ? plane : nullptr);
+  } else {
+    s.draw_patches(st, fr, section, plane);
+  }
+  if (section) glDisable(GL_CLIP_DISTANCE0);
+  std::size_t uploaded = sizeof fr.id + sizeof fr.w;
+  if (section && !s.loops.empty() && fr.nearest < s.loops.size() && slice < s.loops[fr.nearest].size()) {
+    glDisable(GL_DEPTH_TEST);  // the contours of the section's slice over the cut
+    s.set_uniforms(s.line_prog);
+    const GLfloat black[3] = {0.0f, 0.35f, 0.9f};
+    glUniform3fv(glGetUniformLocation(s.line_prog, "color"), 1, black);
+    glBindVertexArray(s.line_vao);
+    glLineWidth(3.0f);  // may be refused (forward-compatible contexts allow only 1): then thin lines
+    for (const auto& [first, count] : s.loops[fr.nearest][slice]) glDrawArrays(GL_LINE_LOOP, first, count);
+    glLineWidth(1.0f);
+    while (glGetError() != GL_NO_ERROR) {}
+    glEnable(GL_DEPTH_TEST);
+  }
+  if (st.hud) s.draw_overlay(st, fr);
+  return uploaded;
+}
+
+void PatchRenderer::Impl::draw_patches(const PatchDrawState& st, const FrameBlend& fr, bool section,
+                                       const GLfloat plane[4]) {
+  Impl& s = *this;
   glUseProgram(s.patch_prog);
   s.set_uniforms(s.patch_prog);
   glActiveTexture(GL_TEXTURE0);
@@ -351,21 +433,28 @@ std::size_t PatchRenderer::draw(const PatchDrawState& st) {
     glDrawArrays(GL_PATCHES, 0, static_cast<GLsizei>(s.index_count));
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }
-  if (section) glDisable(GL_CLIP_DISTANCE0);
-  std::size_t uploaded = sizeof fr.id + sizeof fr.w;
-  if (section && !s.loops.empty() && fr.nearest < s.loops.size() && slice < s.loops[fr.nearest].size()) {
-    glDisable(GL_DEPTH_TEST);  // the contours of the section's slice over the cut
-    s.set_uniforms(s.line_prog);
-    const GLfloat black[3] = {0.0f, 0.35f, 0.9f};
-    glUniform3fv(glGetUniformLocation(s.line_prog, "color"), 1, black);
-    glBindVertexArray(s.line_vao);
-    glLineWidth(3.0f);  // may be refused (forward-compatible contexts allow only 1): then thin lines
-    for (const auto& [first, count] : s.loops[fr.nearest][slice]) glDrawArrays(GL_LINE_LOOP, first, count);
-    glLineWidth(1.0f);
-    while (glGetError() != GL_NO_ERROR) {}
-    glEnable(GL_DEPTH_TEST);
+}
+
+void PatchRenderer::Impl::draw_mesh(const PatchDrawState& st, const FrameBlend& fr, const GLfloat* plane) {
+  const GLfloat keep_all[4] = {0, 0, 0, 1};
+  glUseProgram(mesh_prog);
+  set_uniforms(mesh_prog);
+  set_mesh_frames_uniforms(mesh_prog, mesh, fr, 0, plane ? plane : keep_all);
+  glUniform3fv(glGetUniformLocation(mesh_prog, "color"), 1, st.color);
+  glUniform1i(glGetUniformLocation(mesh_prog, "wire"), 0);
+  glBindVertexArray(mesh_vao);
+  if (st.wireframe) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
   }
-  return uploaded;
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT, nullptr);
+  if (st.wireframe) {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glUniform1i(glGetUniformLocation(mesh_prog, "wire"), 1);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.index_count), GL_UNSIGNED_INT, nullptr);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
 }
 
 std::uint64_t PatchRenderer::count_triangles(const PatchDrawState& st) {

@@ -18,6 +18,7 @@
 
 #include "contour4d/core/errors.h"
 #include "gl_util_internal.h"
+#include "mesh_frames_internal.h"
 
 namespace c4d {
 namespace {
@@ -28,25 +29,6 @@ const GlFailure kFailure{"headless OpenGL: ",
 
 [[noreturn]] void fail(const std::string& what) { gl_fail(kFailure, what); }
 
-const char* kCompactVertex = R"(#version 430 core
-layout(location = 0) in vec3 base;  // frame 0
-uniform samplerBuffer motion;       // displacement from frame 0, texel frame * nv + vertex
-uniform int nv;
-uniform ivec4 frames;               // up to four frames blended for the current time
-uniform vec4 fw;                    // their weights, summing to 1 (linear: two, Catmull-Rom: four)
-uniform mat4 mv;
-uniform mat4 proj;
-out vec3 vpos;
-void main() {
-  vec3 p = base;
-  for (int k = 0; k < 4; ++k)
-    if (fw[k] != 0.0) p += fw[k] * texelFetch(motion, frames[k] * nv + gl_VertexID).xyz;
-  vec4 q = mv * vec4(p, 1.0);
-  vpos = q.xyz;
-  gl_Position = proj * q;
-}
-)";
-
 }  // namespace
 
 struct OffscreenRenderer::Impl {
@@ -55,12 +37,12 @@ struct OffscreenRenderer::Impl {
   EGLContext ctx = EGL_NO_CONTEXT;
   GLuint fbo = 0, color = 0, depth = 0;
   GLuint classical_prog = 0, compact_prog = 0;
-  GLuint vao = 0, vbo = 0, ebo = 0, tbo = 0, tex = 0;
+  GLuint vao = 0, vbo = 0, ebo = 0;  // classical
+  MeshFramesBuffers compact;
   std::size_t index_count = 0;
   MeshSequence frames;  // classical: all frames on the CPU
   std::vector<float> staging;
   std::vector<double> times;  // compact
-  std::size_t nv = 0;         // compact: vertices per frame in the motion texture
   Mat4 mv{}, proj{};
   Vec3 center{};
   std::unique_ptr<PatchRenderer> patches;  // created on first use, destroyed before the context
@@ -95,12 +77,11 @@ struct OffscreenRenderer::Impl {
   }
 
   void reset_buffers() {
-    const GLuint bufs[] = {vbo, ebo, tbo};
+    const GLuint bufs[] = {vbo, ebo};
     for (GLuint b : bufs)
       if (b) glDeleteBuffers(1, &b);
-    vbo = ebo = tbo = 0;
-    if (tex) glDeleteTextures(1, &tex);
-    tex = 0;
+    vbo = ebo = 0;
+    release_mesh_frames(compact);
     if (vao) glDeleteVertexArrays(1, &vao);
     glGenVertexArrays(1, &vao);
     glBindVertexArray(vao);
@@ -176,7 +157,7 @@ OffscreenRenderer::OffscreenRenderer(const RenderOptions& options) : impl_(std::
   s.classical_prog =
       link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
   s.compact_prog =
-      link_program({{GL_VERTEX_SHADER, kCompactVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
+      link_program({{GL_VERTEX_SHADER, kMeshFramesVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}}, nullptr, kFailure);
 }
 
 OffscreenRenderer::~OffscreenRenderer() {
@@ -245,40 +226,8 @@ void OffscreenRenderer::load_compact(const CompactModel& model) {
   s.fit_camera(seq.positions);
   s.reset_buffers();
   s.times = seq.times_ms;
-  const std::size_t nv = model.vertex_count, nf = model.frame_count;
-  GLint max_texels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  if (nf * nv > static_cast<std::size_t>(max_texels))
-    throw InvalidInput(ErrorCode::BadMesh, {},
-                       std::to_string(nf) + " frames of " + std::to_string(nv) + " vertices exceed this GPU's " +
-                           std::to_string(max_texels) + " texels of motion",
-                       "draw fewer frames (contour4d pack --resample N) or use render --classical");
-  s.nv = nv;
-  std::vector<float> base(nv * 3);
-  for (std::size_t v = 0; v < nv; ++v)
-    for (int c = 0; c < 3; ++c) base[3 * v + c] = static_cast<float>(seq.positions[0][v][c] - s.center[c]);
-  std::vector<float> motion(nf * nv * 3);  // every frame's displacement from frame 0 (texel f * nv + v)
-  for (std::size_t f = 0; f < nf; ++f)
-    for (std::size_t v = 0; v < nv; ++v)
-      for (int c = 0; c < 3; ++c)
-        motion[(f * nv + v) * 3 + c] = static_cast<float>(seq.positions[f][v][c] - seq.positions[0][v][c]);
-  glBindVertexArray(s.vao);
-  glGenBuffers(1, &s.vbo);
-  glBindBuffer(GL_ARRAY_BUFFER, s.vbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(base.size() * 4), base.data(), GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
-  glEnableVertexAttribArray(0);
-  glGenBuffers(1, &s.ebo);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.ebo);
-  s.index_count = seq.triangles.size() * 3;
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.index_count * 4), seq.triangles.data(),
-               GL_STATIC_DRAW);
-  glGenBuffers(1, &s.tbo);
-  glBindBuffer(GL_TEXTURE_BUFFER, s.tbo);
-  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(motion.size() * 4), motion.data(), GL_STATIC_DRAW);
-  glGenTextures(1, &s.tex);
-  glBindTexture(GL_TEXTURE_BUFFER, s.tex);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGB32F, s.tbo);
+  s.compact = upload_mesh_frames(seq, s.center, kFailure);
+  s.index_count = s.compact.index_count;
 }
 
 std::size_t OffscreenRenderer::draw_compact(double t_ms) {
@@ -287,12 +236,8 @@ std::size_t OffscreenRenderer::draw_compact(double t_ms) {
   glBindVertexArray(s.vao);
   s.begin_frame();
   s.set_common(s.compact_prog);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_BUFFER, s.tex);
-  glUniform1i(glGetUniformLocation(s.compact_prog, "motion"), 0);
-  glUniform1i(glGetUniformLocation(s.compact_prog, "nv"), static_cast<GLint>(s.nv));
-  glUniform4iv(glGetUniformLocation(s.compact_prog, "frames"), 1, fr.id);
-  glUniform4fv(glGetUniformLocation(s.compact_prog, "fw"), 1, fr.w);
+  const GLfloat keep_all[4] = {0, 0, 0, 1};
+  set_mesh_frames_uniforms(s.compact_prog, s.compact, fr, 0, keep_all);
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.index_count), GL_UNSIGNED_INT, nullptr);
   return sizeof fr.id + sizeof fr.w;
 }

@@ -1,7 +1,8 @@
-// The interactive window of `contour4d view`: GLFW for the window and input, the shared
-// tessellation pipeline (patch_renderer.cpp) for the drawing, so what the window shows is what
-// `contour4d render --tessellated` writes headless (Miara et al. §III.E: interpolated display of
-// the 4D mesh between time steps, on the GPU). Built only when CMake finds glfw3 (libglfw3-dev).
+// The interactive window of `contour4d view`: GLFW for the window and input, the shared pipeline
+// (patch_renderer.cpp) for the drawing, so what the window shows is what `contour4d view --snapshot`
+// writes headless: the decoded frames as `contour4d render` draws them, or the tessellated patches
+// (Miara et al. §III.E: interpolated display of the 4D mesh between time steps, on the GPU), with the
+// overlay. Built only when CMake finds glfw3 (libglfw3-dev).
 #include "contour4d/render/viewer.h"
 
 #include <string>
@@ -28,9 +29,9 @@ namespace c4d {
 
 bool viewer_available() { return false; }
 
-void run_viewer(const PatchMesh&, const Sequence*, const ViewerOptions&) {
+void run_viewer(const MeshSequence&, const Sequence*, const ViewerOptions&) {
   throw Error(ErrorCode::NotImplemented, {}, "this contour4d was built without GLFW, so `view` has no window",
-              "install libglfw3-dev (scripts/setup.sh) and rebuild; headless: contour4d render --tessellated");
+              "install libglfw3-dev (scripts/setup.sh) and rebuild; headless: contour4d view INPUT --snapshot v.png");
 }
 
 #else
@@ -99,6 +100,12 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_D:
       s.draw.displaced = !s.draw.displaced;
       break;
+    case GLFW_KEY_T:
+      s.draw.mesh = !s.draw.mesh;
+      break;
+    case GLFW_KEY_H:
+      s.draw.hud = !s.draw.hud;
+      break;
     case GLFW_KEY_S:
       s.draw.section = !s.draw.section;
       break;
@@ -158,7 +165,18 @@ struct GlfwSession {
 
 bool viewer_available() { return true; }
 
-void run_viewer(const PatchMesh& pm, const Sequence* contours, const ViewerOptions& opt) {
+// Shows `message` in the overlay alone (while something slow is prepared).
+void show_message(GLFWwindow* win, PatchRenderer& renderer, PatchDrawState st, const std::string& message) {
+  glfwGetFramebufferSize(win, &st.width, &st.height);
+  st.hud = true;
+  st.hud_lines = {message};
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  renderer.draw(st);
+  glfwSwapBuffers(win);
+  glfwPollEvents();
+}
+
+void run_viewer(const MeshSequence& frames, const Sequence* contours, const ViewerOptions& opt) {
   GlfwSession session;
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -169,20 +187,22 @@ void run_viewer(const PatchMesh& pm, const Sequence* contours, const ViewerOptio
   if (!win)
     throw Error(ErrorCode::NotImplemented, {}, "cannot open an OpenGL 4.3 core window",
                 "update the graphics driver (Mesa 22+ gives 4.5 even in software: LIBGL_ALWAYS_SOFTWARE=1); "
-                "headless, use `contour4d render --tessellated`");
+                "headless, use `contour4d view INPUT --snapshot v.png`");
   glfwMakeContextCurrent(win);
   glfwSwapInterval(0);  // report the pipeline's rate, not the display's
   ViewerState st;
   st.draw = opt.initial;
+  st.draw.hud_footer = kViewerKeys;
   st.home = st.draw.camera;
   st.speed = opt.speed;
-  st.times = pm.times_ms;
-  st.period = cycle_period(pm.times_ms);
+  st.times = frames.times_ms;
+  st.period = cycle_period(frames.times_ms);
   {
     auto renderer = std::make_unique<PatchRenderer>();  // destroyed while the context is current
-    renderer->load(pm);
+    renderer->load_mesh(frames);
     if (contours) renderer->set_contours(*contours);
     st.slices = renderer->slice_count();
+    bool patches_loaded = false;
     glfwSetWindowUserPointer(win, &st);
     glfwSetKeyCallback(win, on_key);
     glfwSetMouseButtonCallback(win, on_button);
@@ -191,33 +211,38 @@ void run_viewer(const PatchMesh& pm, const Sequence* contours, const ViewerOptio
     using clock = std::chrono::steady_clock;
     auto last = clock::now(), title_time = last;
     const auto start = last;
-    int frames = 0;
-    std::uint64_t tris = renderer->count_triangles(st.draw);
-    int tri_level = st.draw.level;
+    int frames_drawn = 0;
+    double fps = 0.0;
     while (!glfwWindowShouldClose(win)) {
+      if (!st.draw.mesh && !patches_loaded) {  // first T: build the base mesh and its displacement maps
+        PatchDrawState busy = st.draw;
+        busy.mesh = true;  // the decoded frames stay on screen behind the message
+        show_message(win, *renderer, busy, "building the tessellated patches (base mesh + displacement maps)...");
+        renderer->load(build_patch_mesh(frames, opt.patches));
+        patches_loaded = true;
+        last = clock::now();
+      }
       const auto now = clock::now();
       const double dt = std::chrono::duration<double, std::milli>(now - last).count();
       last = now;
       if (st.playing) st.t = std::fmod(st.t + dt * st.speed, st.period);
       glfwGetFramebufferSize(win, &st.draw.width, &st.draw.height);
-      st.draw.t_ms = pm.times_ms.front() + st.t;
+      st.draw.t_ms = frames.times_ms.front() + st.t;
+      st.draw.hud_lines = {fmt::format("{} x{:.2f}   {}   {:.0f} frames/s", st.playing ? "playing" : "paused", st.speed,
+                                       st.draw.mesh ? "decoded frames (as render draws them)"
+                                                    : fmt::format("tessellated patches, level {}{}", st.draw.level,
+                                                                  st.draw.displaced ? "" : ", no maps"),
+                                       fps)};
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
-      if (st.draw.level != tri_level) {
-        tris = renderer->count_triangles(st.draw);
-        tri_level = st.draw.level;
-      }
       renderer->draw(st.draw);
       glfwSwapBuffers(win);
       glfwPollEvents();
-      ++frames;
+      ++frames_drawn;
       const double since = std::chrono::duration<double>(now - title_time).count();
       if (since >= 0.5) {
-        const std::string title = fmt::format(
-            "{} | t {:.0f} ms {} x{:.2f} | level {} ({} triangles){}{}{} | {:.1f} fps", opt.title, st.t,
-            st.playing ? "playing" : "paused", st.speed, st.draw.level, tris, st.draw.displaced ? "" : " | no maps",
-            st.draw.wireframe ? " | wire" : "", st.draw.section ? " | section" : "", frames / since);
-        glfwSetWindowTitle(win, title.c_str());
-        frames = 0;
+        fps = frames_drawn / since;
+        glfwSetWindowTitle(win, fmt::format("{} | {:.1f} fps", opt.title, fps).c_str());
+        frames_drawn = 0;
         title_time = now;
       }
       if (opt.max_seconds > 0 && std::chrono::duration<double>(now - start).count() > opt.max_seconds) break;

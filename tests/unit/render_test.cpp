@@ -231,8 +231,50 @@ TEST(Render, PhantomThroughTheTessellationPipeline) {
 TEST(Viewer, WithoutDisplayThrowsAClearError) {
   unsetenv("DISPLAY");
   unsetenv("WAYLAND_DISPLAY");
-  const PatchMesh pm = build_patch_mesh(synthetic_beating_mesh(2, 4), {});
-  EXPECT_THROW(run_viewer(pm, nullptr, {}), Error);
+  EXPECT_THROW(run_viewer(synthetic_beating_mesh(2, 4), nullptr, {}), Error);
+}
+
+// The viewer's pipeline as `view --snapshot` draws it: the decoded frames (the default) cover the image
+// centre, the section clips them, and the overlay adds dark text at the top left and the volume curve
+// (blue) with its time marker (red) at the bottom right.
+TEST(Render, ViewerDrawsTheDecodedFramesWithItsOverlay) {
+  const RenderOptions o = small_image();
+  RenderOptions big = o;
+  big.width = 480;
+  big.height = 320;
+  auto r = make(big);
+  ASSERT_NE(r, nullptr);
+  const MeshSequence seq = synthetic_beating_mesh(3, 8);
+  r->patches().load_mesh(seq);
+  PatchDrawState st;
+  st.mesh = true;
+  st.t_ms = seq.times_ms[3];
+  r->draw_patches(st);
+  const Image plain = r->read_image();
+  EXPECT_TRUE(is_object(plain, big.width / 2, big.height / 2));
+  EXPECT_FALSE(is_object(plain, 0, 0));
+  st.section = true;
+  r->draw_patches(st);
+  EXPECT_LT(object_fraction(r->read_image()), object_fraction(plain));
+  st.section = false;
+  st.hud = true;
+  st.hud_lines = {"status line"};
+  st.hud_footer = kViewerKeys;
+  r->draw_patches(st);
+  const Image hud = r->read_image();
+  const auto count = [&](const Image& im, int x0, int y0, int x1, int y1, auto pred) {
+    std::size_t n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) n += pred(im.rgba.data() + (static_cast<std::size_t>(y) * big.width + x) * 4);
+    return n;
+  };
+  const auto dark = [](const std::uint8_t* p) { return p[0] < 60 && p[1] < 60 && p[2] < 60; };
+  const auto blue = [](const std::uint8_t* p) { return p[2] > 150 && p[0] < 80; };
+  const auto red = [](const std::uint8_t* p) { return p[0] > 150 && p[1] < 60 && p[2] < 60; };
+  EXPECT_EQ(count(plain, 0, 0, 200, 30, dark), 0u);
+  EXPECT_GT(count(hud, 0, 0, 200, 30, dark), 50u);                                             // time line
+  EXPECT_GT(count(hud, big.width - 180, big.height - 100, big.width, big.height, blue), 30u);  // curve
+  EXPECT_GT(count(hud, big.width - 180, big.height - 100, big.width, big.height, red), 5u);    // marker
 }
 
 }  // namespace

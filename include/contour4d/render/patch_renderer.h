@@ -1,9 +1,12 @@
 #pragma once
 //! \file patch_renderer.h
-//! \brief The tessellation pipeline shared by the window (`contour4d view`) and the offscreen
-//! renderer (`contour4d render --tessellated`): a base mesh and its displacement maps
-//! (temporal/displacement_map.h) uploaded once; per frame only uniforms (time weights, camera).
-//! Miara et al. §III.E / Table II.
+//! \brief The drawing pipeline shared by the window (`contour4d view`) and the offscreen renderer
+//! (`contour4d view --snapshot`, `contour4d render --tessellated`): the decoded frames of the compact
+//! model (what `contour4d render` draws by default: frame 0 and every frame's displacement uploaded
+//! once, blended per time in the vertex stage), or a base mesh and its displacement maps
+//! (temporal/displacement_map.h) through the tessellation stages; per frame only uniforms (time
+//! weights, camera), and an optional overlay (time, frame, volume curve, keys). Miara et al. §III.E /
+//! Table II.
 //!
 //! Per base triangle the tessellation control shader sets the level; the evaluation shader builds
 //! the cubic PN patch from the corners and normals blended between frames (linear or periodic
@@ -14,8 +17,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "contour4d/core/mesh.h"
 #include "contour4d/core/stack.h"
 #include "contour4d/temporal/displacement_map.h"
 #include "contour4d/temporal/interpolate.h"
@@ -37,6 +42,10 @@ struct PatchDrawState {
   bool wireframe = false;  //!< draw the tessellated edges over the surface
   bool section = false;    //!< clip at the section plane and draw the contours of that slice
   int section_slice = -1;  //!< index into the sorted slice list (-1: the middle slice)
+  bool mesh = false;       //!< draw the decoded frames (load_mesh) instead of the tessellated patches
+  bool hud = false;        //!< draw the overlay: time and frame, `hud_lines`, the volume curve, `hud_footer`
+  std::vector<std::string> hud_lines;  //!< extra lines under the time (e.g. playback state, frames/s)
+  std::string hud_footer;              //!< bottom line (e.g. the keys)
   TimeInterpolation interpolation = TimeInterpolation::Linear;  //!< between frames
   OrbitCamera camera;                                           //!< view
   int width = 640;                                              //!< viewport (pixels)
@@ -57,6 +66,9 @@ class PatchRenderer {
   //! Uploads the base triangles, corners and normals of all frames, and all displacement maps (once).
   //! \throw InvalidInput (BadMesh) on an empty patch mesh.
   void load(const PatchMesh& pm);
+  //! Uploads the decoded frames (frame 0 and every frame's displacement, once) for PatchDrawState::mesh,
+  //! and keeps each frame's volume for the overlay's curve. \throw InvalidInput (BadMesh) when empty.
+  void load_mesh(const MeshSequence& frames);
   //! Uploads the input contours (all frames, once), for the section view.
   void set_contours(const Sequence& contours);
   //! Number of slices of the contours set (0 without contours).
