@@ -1,4 +1,5 @@
-// Compact 4D model: frame 0 on a fine grid, then every frame's move on the same grid.
+// Compact 4D model: frame 0 on a fine grid, then every frame's move on the same grid, each vertex's move
+// predicted from its already-decoded neighbours' moves.
 //
 // References:
 //  - L. Miara, S. Benomar Elmdeghri, M. O. Cherkaoui Malki, "New Method for 4D Reconstruction of
@@ -150,8 +151,92 @@ std::vector<std::int32_t> decode_vertices(const std::vector<std::uint8_t>& in, s
             frame);
   std::vector<std::int32_t> q(n * 4);
   if (meshopt_decodeVertexBuffer(q.data(), n, kVertexBytes, in.data(), in.size()) != 0)
-    damaged(frame <= 0 ? "corrupt position stream" : "corrupt motion stream", frame);
+    damaged("corrupt position stream", frame);
   return q;
+}
+
+// Each vertex's neighbours with a smaller id (CSR): the vertices a decoder has when it reaches it.
+struct EarlierNeighbours {
+  std::vector<std::uint32_t> start;  // n + 1
+  std::vector<std::uint32_t> ids;
+};
+
+EarlierNeighbours earlier_neighbours(std::size_t n, const std::vector<std::uint32_t>& idx) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // (later, earlier)
+  edges.reserve(idx.size());
+  for (std::size_t t = 0; t + 2 < idx.size(); t += 3)
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t a = idx[t + c], b = idx[t + (c + 1) % 3];
+      if (a != b) edges.emplace_back(std::max(a, b), std::min(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  EarlierNeighbours nb;
+  nb.start.assign(n + 1, 0);
+  for (const auto& e : edges) ++nb.start[e.first + 1];
+  for (std::size_t v = 0; v < n; ++v) nb.start[v + 1] += nb.start[v];
+  nb.ids.reserve(edges.size());
+  for (const auto& e : edges) nb.ids.push_back(e.second);
+  return nb;
+}
+
+// a / k rounded to the nearest integer, halves away from zero (k > 0): the same on every machine.
+std::int64_t div_round(std::int64_t a, std::int64_t k) {
+  return a >= 0 ? (2 * a + k) / (2 * k) : -((-2 * a + k) / (2 * k));
+}
+
+// The move of vertex v predicted from its earlier neighbours' moves (component c of x, y, z, 0 rows).
+std::int64_t predicted_move(const EarlierNeighbours& nb, const std::vector<std::int64_t>& move, std::size_t v, int c) {
+  const std::uint32_t b = nb.start[v], e = nb.start[v + 1];
+  if (b == e) return 0;
+  std::int64_t sum = 0;
+  for (std::uint32_t i = b; i < e; ++i)
+    sum += move[4 * static_cast<std::size_t>(nb.ids[i]) + static_cast<std::size_t>(c)];
+  return div_round(sum, static_cast<std::int64_t>(e - b));
+}
+
+// Largest residual magnitude a motion stream may hold (grid units): far beyond any mesh on a 1e9-unit grid.
+constexpr std::uint64_t kMaxResidual = std::uint64_t{1} << 40;
+
+// One frame's moves (grid units, x, y, z, 0 rows) as zigzag varints of their residuals against the
+// earlier-neighbour prediction, all x first, then y, then z (the payload's zstd does the rest).
+std::vector<std::uint8_t> encode_moves(const EarlierNeighbours& nb, const std::vector<std::int64_t>& move) {
+  std::vector<std::uint8_t> out;
+  const std::size_t n = move.size() / 4;
+  out.reserve(3 * n);
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t v = 0; v < n; ++v) {
+      const std::int64_t r = move[4 * v + static_cast<std::size_t>(c)] - predicted_move(nb, move, v, c);
+      std::uint64_t z = (static_cast<std::uint64_t>(r) << 1) ^ static_cast<std::uint64_t>(r >> 63);
+      while (z >= 0x80) {
+        out.push_back(static_cast<std::uint8_t>(z | 0x80));
+        z >>= 7;
+      }
+      out.push_back(static_cast<std::uint8_t>(z));
+    }
+  return out;
+}
+
+std::vector<std::int64_t> decode_moves(const EarlierNeighbours& nb, const std::vector<std::uint8_t>& in, std::size_t n,
+                                       int frame) {
+  std::vector<std::int64_t> move(4 * n, 0);
+  std::size_t pos = 0;
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t v = 0; v < n; ++v) {
+      std::uint64_t z = 0;
+      for (int shift = 0;; shift += 7) {
+        if (pos >= in.size()) damaged("truncated motion stream", frame);
+        if (shift > 42) damaged("a move too large in the motion stream", frame);
+        const std::uint8_t b = in[pos++];
+        z |= static_cast<std::uint64_t>(b & 0x7f) << shift;
+        if ((b & 0x80) == 0) break;
+      }
+      if (z > 2 * kMaxResidual) damaged("a move too large in the motion stream", frame);
+      const std::int64_t r = static_cast<std::int64_t>(z >> 1) ^ -static_cast<std::int64_t>(z & 1);
+      move[4 * v + static_cast<std::size_t>(c)] = r + predicted_move(nb, move, v, c);
+    }
+  if (pos != in.size()) damaged("trailing bytes in the motion stream", frame);
+  return move;
 }
 
 // The decoded positions of grid coordinates q (x, y, z, 0 per vertex).
@@ -214,12 +299,14 @@ CompactModel encode_on_grid(const MeshSequence& seq, const std::vector<std::uint
   m.indices.resize(meshopt_encodeIndexBufferBound(idx.size(), nv));
   m.indices.resize(meshopt_encodeIndexBuffer(m.indices.data(), m.indices.size(), idx.data(), idx.size()));
   m.positions = encode_vertices(to_grid(m, seq.positions[0], order));
+  const EarlierNeighbours nb = earlier_neighbours(nv, idx);
   m.motion.resize(nf - 1);
   tbb::parallel_for(std::size_t{1}, nf, [&](std::size_t f) {
-    std::vector<std::int32_t> move = to_grid(m, seq.positions[f], order);
+    const std::vector<std::int32_t> now = to_grid(m, seq.positions[f], order);
     const std::vector<std::int32_t> before = to_grid(m, seq.positions[f - 1], order);
-    for (std::size_t i = 0; i < move.size(); ++i) move[i] -= before[i];
-    m.motion[f - 1] = encode_vertices(move);
+    std::vector<std::int64_t> move(now.size());
+    for (std::size_t i = 0; i < move.size(); ++i) move[i] = static_cast<std::int64_t>(now[i]) - before[i];
+    m.motion[f - 1] = encode_moves(nb, move);
   });
   return m;
 }
@@ -286,8 +373,13 @@ MeshSequence compact_decode(const CompactModel& m) {
   const std::vector<std::int32_t> q0 = decode_vertices(m.positions, m.vertex_count, 0);
   std::vector<std::int64_t> q(q0.begin(), q0.end());  // 64-bit sums: a damaged stream cannot overflow
   seq.positions[0] = from_grid(m, q);
+  const EarlierNeighbours nb = earlier_neighbours(m.vertex_count, idx);
   for (std::size_t f = 1; f < m.frame_count; ++f) {
-    const std::vector<std::int32_t> move = decode_vertices(m.motion[f - 1], m.vertex_count, static_cast<int>(f));
+    if (m.motion[f - 1].size() < 3 * static_cast<std::size_t>(m.vertex_count))  // a byte per value at least
+      damaged("a motion stream of " + std::to_string(m.motion[f - 1].size()) + " bytes cannot hold " +
+                  std::to_string(m.vertex_count) + " vertices",
+              static_cast<int>(f));
+    const std::vector<std::int64_t> move = decode_moves(nb, m.motion[f - 1], m.vertex_count, static_cast<int>(f));
     for (std::size_t i = 0; i < q.size(); ++i) q[i] += move[i];
     seq.positions[f] = from_grid(m, q);
   }

@@ -8,8 +8,10 @@
 //! Layout of the model:
 //!  - the triangles (meshopt index codec) and frame 0's positions on a grid of `step` mm (meshopt
 //!    vertex codec of int32 x,y,z,0), vertices and triangles reordered for locality;
-//!  - per frame f >= 1, every vertex's move on that grid since frame f − 1 (int32 x,y,z,0, meshopt vertex
-//!    codec: neighbouring vertices move alike, so the byte deltas are small).
+//!  - per frame f >= 1, every vertex's move on that grid since frame f − 1, as its residual against the
+//!    rounded mean move of its neighbours with smaller ids (which the decoder has already restored:
+//!    neighbouring vertices move alike, so most residuals are a few grid steps), zigzag varints, all x,
+//!    then all y, then all z.
 //! Every decoded vertex is within step·√3/2 mm (Euclidean) of the same input vertex, in every frame. The
 //! encoder measures the decoded facet normals against the input's and refines the grid until they meet
 //! CompactOptions::normal_p99 (each refinement scales the step by the ratio of bound to measure).
@@ -45,8 +47,8 @@ struct CompactModel {
   double tolerance = 0.0;                         //!< the bound the encoder guaranteed (mm)
   std::vector<std::uint8_t> indices;              //!< meshopt_encodeIndexBuffer of the triangles
   std::vector<std::uint8_t> positions;            //!< meshopt_encodeVertexBuffer of int32 x,y,z,0 (grid units)
-  std::vector<std::vector<std::uint8_t>> motion;  //!< per frame 1..F−1: meshopt_encodeVertexBuffer of int32
-                                                  //!< x,y,z,0, the move since the frame before (grid units)
+  std::vector<std::vector<std::uint8_t>> motion;  //!< per frame 1..F−1: the moves since the frame before
+                                                  //!< (grid units), predicted residuals as zigzag varints
 };
 
 //! Sizes of the parts of an encoded model and its error, for reports (bytes, mm, degrees).
