@@ -94,7 +94,7 @@ TEST(Render, CompactAndClassicalDrawTheBeatingShape) {
 // 20-frame left-heart cycle alike, frame by frame. Mean grey difference under 2 levels, and no crack lines:
 // at most a few pixels inside the object (2 pixels in from any silhouette) differ by more than 24 grey
 // levels. The control-vertex model this path drew before failed the second check (16 such pixels in the
-// worst frame of this cycle, 397 on biv-me's 25 frames; 2 now).
+// worst frame of this cycle, 409 on biv-me's 25 frames; 2 now).
 TEST(Render, CompactPathDrawsWhatTheClassicalPathDraws) {
   if (!C4D_HEAVY_TESTS) GTEST_SKIP() << "whole-pipeline test: release build only";
   const Phantom ph = make_phantom("left-heart-cycle", {});
