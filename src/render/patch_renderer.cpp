@@ -461,6 +461,7 @@ std::uint64_t PatchRenderer::count_triangles(const PatchDrawState& st) {
   Impl& s = *impl_;
   PatchDrawState plain = st;
   plain.wireframe = false;
+  plain.hud = false;  // the overlay's text is triangles too
   glBeginQuery(GL_PRIMITIVES_GENERATED, s.query);
   draw(plain);
   glEndQuery(GL_PRIMITIVES_GENERATED);

@@ -1,8 +1,8 @@
 #pragma once
 //! \file normals.h
-//! \brief Unit vertex normals of a triangle mesh: area-weighted (the direction of the compact model's scalar
-//! corrections, computed alike when encoding and decoding; the displacement-map bake; glTF's NORMAL) and
-//! after Max 1999, "Weights for computing vertex normals from facet normals" (the all-frames carry).
+//! \brief Unit vertex normals of a triangle mesh: area-weighted (the displacement-map bake, the rebuilt
+//! frames' landing test, glTF's NORMAL) and after Max 1999, "Weights for computing vertex normals from facet
+//! normals" (the all-frames carry).
 
 #include <vector>
 
