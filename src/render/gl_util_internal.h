@@ -67,6 +67,13 @@ void main() {
 }
 )";
 
+//! Fragment stage of lines and overlays: uniform `color`, unshaded.
+inline constexpr const char* kFlatFragment = R"(#version 430 core
+uniform vec3 color;
+out vec4 frag;
+void main() { frag = vec4(color, 1.0); }
+)";
+
 //! View matrix of a camera at `eye` looking along unit `d`, with unit `side` and `up` (right-handed).
 Mat4 view_matrix(const Vec3& side, const Vec3& up, const Vec3& d, const Vec3& eye);
 

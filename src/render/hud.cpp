@@ -24,12 +24,6 @@ uniform vec2 viewport;
 void main() { gl_Position = vec4(px.x / viewport.x * 2.0 - 1.0, 1.0 - px.y / viewport.y * 2.0, 0.0, 1.0); }
 )";
 
-const char* kHudFragment = R"(#version 430 core
-uniform vec3 color;
-out vec4 frag;
-void main() { frag = vec4(color, 1.0); }
-)";
-
 using Points = std::vector<float>;  // x, y pixel pairs
 
 // The triangles of `text` drawn from (x, y) (top left of the first character), `scale` pixels per font unit.
@@ -53,7 +47,7 @@ void add_text(Points& tris, const std::string& text, float x, float y, float sca
 }  // namespace
 
 Hud::Hud(const GlFailure& failure) {
-  prog_ = link_program({{GL_VERTEX_SHADER, kHudVertex}, {GL_FRAGMENT_SHADER, kHudFragment}}, "overlay", failure);
+  prog_ = link_program({{GL_VERTEX_SHADER, kHudVertex}, {GL_FRAGMENT_SHADER, kFlatFragment}}, "overlay", failure);
   glGenVertexArrays(1, &vao_);
   glGenBuffers(1, &vbo_);
 }

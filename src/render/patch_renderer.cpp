@@ -136,12 +136,6 @@ void main() {
 }
 )";
 
-const char* kLineFragment = R"(#version 430 core
-uniform vec3 color;
-out vec4 frag;
-void main() { frag = vec4(color, 1.0); }
-)";
-
 }  // namespace
 
 struct PatchRenderer::Impl {
@@ -217,7 +211,7 @@ PatchRenderer::PatchRenderer() : impl_(std::make_unique<Impl>()) {
                                {GL_FRAGMENT_SHADER, kShadedFragment}},
                               "patch", kFailure);
   s.line_prog =
-      link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kLineFragment}}, "contour line", kFailure);
+      link_program({{GL_VERTEX_SHADER, kPlainVertex}, {GL_FRAGMENT_SHADER, kFlatFragment}}, "contour line", kFailure);
   s.mesh_prog = link_program({{GL_VERTEX_SHADER, kMeshFramesVertex}, {GL_FRAGMENT_SHADER, kShadedFragment}},
                              "decoded frames", kFailure);
   s.hud = std::make_unique<Hud>(kFailure);

@@ -145,13 +145,13 @@ std::vector<std::uint8_t> encode_vertices(const std::vector<std::int32_t>& q) {
   return out;
 }
 
-std::vector<std::int32_t> decode_vertices(const std::vector<std::uint8_t>& in, std::size_t n, int frame) {
+std::vector<std::int32_t> decode_vertices(const std::vector<std::uint8_t>& in, std::size_t n) {
   if (n * kVertexBytes > in.size() * kMaxVertexCodecRatio + 4096)
     damaged("a vertex stream of " + std::to_string(in.size()) + " bytes cannot hold " + std::to_string(n) + " vertices",
-            frame);
+            0);
   std::vector<std::int32_t> q(n * 4);
   if (meshopt_decodeVertexBuffer(q.data(), n, kVertexBytes, in.data(), in.size()) != 0)
-    damaged("corrupt position stream", frame);
+    damaged("corrupt position stream", 0);
   return q;
 }
 
@@ -290,25 +290,20 @@ CompactStats measure(const MeshSequence& in, const MeshSequence& out, const std:
   return st;
 }
 
-// The model on a grid of `step` mm.
-CompactModel encode_on_grid(const MeshSequence& seq, const std::vector<std::uint32_t>& idx,
-                            const std::vector<std::uint32_t>& order, double step) {
-  const std::size_t nv = seq.positions[0].size(), nf = seq.positions.size();
-  CompactModel m = model_header(seq);
+// Sets m's grid of `step` mm and its positions and motion on it (m holds the header and the triangles).
+void encode_on_grid(CompactModel& m, const MeshSequence& seq, const EarlierNeighbours& nb,
+                    const std::vector<std::uint32_t>& order, double step) {
+  const std::size_t nf = seq.positions.size();
   set_grid(m, seq, step);
-  m.indices.resize(meshopt_encodeIndexBufferBound(idx.size(), nv));
-  m.indices.resize(meshopt_encodeIndexBuffer(m.indices.data(), m.indices.size(), idx.data(), idx.size()));
-  m.positions = encode_vertices(to_grid(m, seq.positions[0], order));
-  const EarlierNeighbours nb = earlier_neighbours(nv, idx);
+  std::vector<std::vector<std::int32_t>> grid(nf);
+  tbb::parallel_for(std::size_t{0}, nf, [&](std::size_t f) { grid[f] = to_grid(m, seq.positions[f], order); });
+  m.positions = encode_vertices(grid[0]);
   m.motion.resize(nf - 1);
   tbb::parallel_for(std::size_t{1}, nf, [&](std::size_t f) {
-    const std::vector<std::int32_t> now = to_grid(m, seq.positions[f], order);
-    const std::vector<std::int32_t> before = to_grid(m, seq.positions[f - 1], order);
-    std::vector<std::int64_t> move(now.size());
-    for (std::size_t i = 0; i < move.size(); ++i) move[i] = static_cast<std::int64_t>(now[i]) - before[i];
+    std::vector<std::int64_t> move(grid[f].size());
+    for (std::size_t i = 0; i < move.size(); ++i) move[i] = static_cast<std::int64_t>(grid[f][i]) - grid[f - 1][i];
     m.motion[f - 1] = encode_moves(nb, move);
   });
-  return m;
 }
 
 // Finest grid tried: an error of a micrometre tilts no facet of a contour-stack mesh visibly.
@@ -325,14 +320,18 @@ CompactModel compact_encode(const MeshSequence& seq, const CompactOptions& opt,
   if (!(opt.tolerance > 0.0) || !(opt.step > 0.0) || !(opt.normal_p99 > 0.0))
     throw InvalidInput(ErrorCode::Usage, {}, "the tolerance, the normal bound and the grid step must be positive",
                        "use e.g. --tolerance 0.05 (the default)");
+  const std::size_t nv = seq.positions[0].size();
   std::vector<std::uint32_t> idx = flat_indices(seq.triangles);
-  const std::vector<std::uint32_t> order = reorder_vertices(idx, seq.positions[0].size(), opt.reorder);  // rewrites idx
+  const std::vector<std::uint32_t> order = reorder_vertices(idx, nv, opt.reorder);  // rewrites idx
+  CompactModel m = model_header(seq);
+  m.indices.resize(meshopt_encodeIndexBufferBound(idx.size(), nv));
+  m.indices.resize(meshopt_encodeIndexBuffer(m.indices.data(), m.indices.size(), idx.data(), idx.size()));
+  const EarlierNeighbours nb = earlier_neighbours(nv, idx);
 
   double step = std::min(opt.step, 2.0 * opt.tolerance / std::sqrt(3.0));
-  CompactModel m;
   CompactStats st;
   for (int grid = 0; grid < kMaxGrids; ++grid) {
-    m = encode_on_grid(seq, idx, order, step);
+    encode_on_grid(m, seq, nb, order, step);
     st = measure(seq, compact_decode(m), order);
     if (st.normal_p99 <= opt.normal_p99 || step <= kMinStep) break;
     step = std::max(kMinStep, step * 0.9 * opt.normal_p99 / st.normal_p99);
@@ -370,7 +369,7 @@ MeshSequence compact_decode(const CompactModel& m) {
     }
   seq.times_ms = m.times_ms;
   seq.positions.resize(m.frame_count);
-  const std::vector<std::int32_t> q0 = decode_vertices(m.positions, m.vertex_count, 0);
+  const std::vector<std::int32_t> q0 = decode_vertices(m.positions, m.vertex_count);
   std::vector<std::int64_t> q(q0.begin(), q0.end());  // 64-bit sums: a damaged stream cannot overflow
   seq.positions[0] = from_grid(m, q);
   const EarlierNeighbours nb = earlier_neighbours(m.vertex_count, idx);
