@@ -124,21 +124,30 @@ int run_render(const RenderArgs& a) {
                              opt.width, opt.height, pm.triangles.size(), a.level, a.output);
     return 0;
   }
-  if (a.classical)
-    r.load_classical(seq);
-  else
-    r.load_compact(model);
-  OutputDir out(a.output);
+  // Both paths draw the same times: the stored frames, or `count` times evenly over the cycle, which the
+  // classical path interpolates on the CPU (the compact path on the GPU, with the same weights).
   const double period = cycle_period(seq.times_ms);
+  std::vector<double> times;
+  for (std::size_t i = 0; i < count; ++i)
+    times.push_back(a.frames > 0 ? seq.times_ms.front() + period * static_cast<double>(i) / static_cast<double>(count)
+                                 : seq.times_ms[i]);
+  if (a.classical && a.frames > 0) {
+    MeshSequence drawn;
+    drawn.triangles = seq.triangles;
+    drawn.times_ms = times;
+    for (double t : times) drawn.positions.push_back(interpolate_positions(seq, t, opt.interpolation));
+    r.load_classical(drawn, seq);
+  } else if (a.classical) {
+    r.load_classical(seq);
+  } else {
+    r.load_compact(model);
+  }
+  OutputDir out(a.output);
   for (std::size_t i = 0; i < count; ++i) {
-    if (a.classical) {
-      r.draw_classical(i % nf);
-    } else {
-      const double t = a.frames > 0
-                           ? seq.times_ms.front() + period * static_cast<double>(i) / static_cast<double>(count)
-                           : seq.times_ms[i];
-      r.draw_compact(t);
-    }
+    if (a.classical)
+      r.draw_classical(i);
+    else
+      r.draw_compact(times[i]);
     write_png(out.path(fmt::format("frame_{:03d}.png", i)), r.read_image());
   }
   out.commit();

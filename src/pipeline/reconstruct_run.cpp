@@ -92,6 +92,7 @@ Json surface_json(const SurfaceReport& r) {
   return {{"contours", r.contours},
           {"caps", r.caps},
           {"branchings", r.branchings},
+          {"opening_holes", r.opening_holes},
           {"vertices", r.vertices},
           {"triangles", r.triangles},
           {"closed", r.closed},

@@ -184,11 +184,13 @@ std::string OffscreenRenderer::description() const {
   return std::string(r ? r : "?") + ", OpenGL " + (v ? v : "?");
 }
 
-void OffscreenRenderer::load_classical(const MeshSequence& seq) {
+void OffscreenRenderer::load_classical(const MeshSequence& seq) { load_classical(seq, seq); }
+
+void OffscreenRenderer::load_classical(const MeshSequence& seq, const MeshSequence& camera) {
   Impl& s = *impl_;
-  if (seq.positions.empty() || seq.triangles.empty())
+  if (seq.positions.empty() || seq.triangles.empty() || camera.positions.empty())
     throw InvalidInput(ErrorCode::BadMesh, {}, "empty mesh sequence", "nothing to draw");
-  s.fit_camera(seq.positions);
+  s.fit_camera(camera.positions);
   s.frames = seq;
   s.reset_buffers();
   const std::size_t nv = seq.positions[0].size();

@@ -52,6 +52,17 @@ constexpr double kBridgeRiseBoth = 0.35;
 // their rows scaled by its inverse).
 constexpr double kRingCapScale = 2.0;
 const double kUniformCapScale = std::sqrt(2.0);
+// A hole opens towards the neighbouring slice (join_opening_holes) where at least this share of its outline
+// lies outside the material of its ring's partner there...
+constexpr double kOpeningShare = 0.25;
+// ... and the partner's material covers at most this share of the hole's area.
+constexpr double kCoveredShare = 0.25;
+// The bridge across an opening rises between these shares of the gap (opening_rise).
+constexpr double kOpeningRise[2] = {0.2, 0.8};
+// A bridge's cost is its length × (1 + kMisplacedCost × the share of it, over kBridgeSamples points, that
+// crosses where the material between the slices ends): bridges follow the material.
+constexpr double kMisplacedCost = 4.0;
+constexpr int kBridgeSamples = 8;
 
 // One contour of the frame, in canonical form.
 struct Node {
@@ -179,17 +190,58 @@ std::size_t separate_touching(std::vector<Node>& nodes, const std::vector<int>& 
   return moved;
 }
 
+// True where p lies in the material of the contours `region` (even–odd over their polygons).
+bool in_material(Vec2 p, const std::vector<const std::vector<Vec2>*>& region) {
+  bool inside = false;
+  for (const auto* poly : region) inside = inside != point_in_polygon(p, *poly);
+  return inside;
+}
+
+// The other slice of a branching, for placing its bridges: the material of its contours, and whether the
+// contours merged on this slice are a ring and its hole (an opening, join_opening_holes).
+struct BridgeSide {
+  std::vector<const std::vector<Vec2>*> other_material;
+  bool opening = false;
+};
+
+// Where a ring opens between two slices, the share of the gap at which its material ends: the ring is
+// w = |q − p| wide across the bridge p–q on its slice, and the other slice's material leaves an opening
+// about twice the distance from the bridge's middle to it; the width, falling linearly from w to minus
+// the opening, reaches zero at w / (w + opening) of the gap.
+double opening_rise(Vec2 p, Vec2 q, const BridgeSide& side) {
+  const Vec2 mid = 0.5 * (p + q);
+  double opening = std::numeric_limits<double>::infinity();
+  for (const auto* poly : side.other_material) opening = std::min(opening, 2.0 * polyline_distance(mid, *poly));
+  const double w = norm(q - p);
+  return std::clamp(w / (w + opening), kOpeningRise[0], kOpeningRise[1]);
+}
+
 // Merges the chains of `members` (same slice) into one through bridges lifted by up to `lift` mm
-// along the normal (signed). Returns the merged chain.
+// along the normal (signed). Each bridge joins the pair of points of least length × (1 + kMisplacedCost ×
+// the share of the bridge that crosses where the material between the slices ends): outside the other
+// slice's material where contours merge, inside it where a ring opens. Without `side`, the closest pair.
+// Across an opening `lift` is the whole gap, of which the bridge rises the share opening_rise gives.
+// Returns the merged chain.
 std::vector<std::uint32_t> merge_with_bridges(const std::vector<int>& members, std::vector<Node>& nodes,
-                                              const Plane& plane, double lift, double edge, Builder& b) {
+                                              const Plane& plane, double lift, double edge, Builder& b,
+                                              const BridgeSide& side = {}) {
+  // The share of the segment p–q (samples at its interior) lying where the material ends between the slices.
+  auto misplaced = [&](Vec2 p, Vec2 q) {
+    if (side.other_material.empty()) return 0.0;
+    int wrong = 0;
+    for (int k = 0; k < kBridgeSamples; ++k) {
+      const double t = (k + 0.5) / kBridgeSamples;
+      wrong += in_material(p + t * (q - p), side.other_material) == side.opening ? 1 : 0;
+    }
+    return static_cast<double>(wrong) / kBridgeSamples;
+  };
   std::vector<std::uint32_t> merged = nodes[members[0]].chain;
   std::vector<Vec2> merged_2d = nodes[members[0]].poly;  // 2D position per chain entry
   std::vector<char> is_bridge(merged.size(), 0);
   std::vector<char> done(members.size(), 0);
   done[0] = 1;
   for (std::size_t round = 1; round < members.size(); ++round) {
-    double best = std::numeric_limits<double>::infinity();
+    double best = std::numeric_limits<double>::infinity(), best_length = best;
     std::size_t bm = 0, bx = 0, by = 0;
     for (std::size_t m = 0; m < members.size(); ++m) {
       if (done[m]) continue;
@@ -198,8 +250,11 @@ std::vector<std::uint32_t> merge_with_bridges(const std::vector<int>& members, s
         if (is_bridge[x]) continue;
         for (std::size_t y = 0; y < poly.size(); ++y) {
           const double d = norm(poly[y] - merged_2d[x]);
-          if (d < best - 1e-12) {
-            best = d;
+          if (d >= best - 1e-12) continue;  // the cost is at least the length
+          const double cost = d * (1.0 + kMisplacedCost * misplaced(merged_2d[x], poly[y]));
+          if (cost < best - 1e-12) {
+            best = cost;
+            best_length = d;
             bm = m;
             bx = x;
             by = y;
@@ -210,13 +265,14 @@ std::vector<std::uint32_t> merge_with_bridges(const std::vector<int>& members, s
     done[bm] = 1;
     const Node& other = nodes[members[bm]];
     const Vec2 p = merged_2d[bx], q = other.poly[by];
-    const int pieces = std::max(1, static_cast<int>(std::ceil(best / edge - 1e-9)));
+    const int pieces = std::max(1, static_cast<int>(std::ceil(best_length / edge - 1e-9)));
+    const double rise = side.opening ? lift * opening_rise(p, q, side) : lift;
     std::vector<std::uint32_t> bridge;
     std::vector<Vec2> bridge_2d;
     for (int k = 1; k < pieces; ++k) {
       const double t = static_cast<double>(k) / pieces;
       const Vec2 r = p + t * (q - p);
-      bridge.push_back(b.add(from_plane(plane, r, lift * std::sin(std::numbers::pi * t))));
+      bridge.push_back(b.add(from_plane(plane, r, rise * std::sin(std::numbers::pi * t))));
       bridge_2d.push_back(r);
     }
     std::vector<Vec2> other_2d = other.poly;
@@ -687,6 +743,85 @@ void canonical_contours(FrameWork& fw) {
   fw.contour_vertices = static_cast<std::uint32_t>(b.positions.size());
 }
 
+// The holes of node n's slice directly inside n (depth one more), as polygons: with n, its material.
+std::vector<const std::vector<Vec2>*> material_of(const FrameWork& fw, int n) {
+  const Node& nd = fw.nodes[n];
+  std::vector<const std::vector<Vec2>*> region{&nd.poly};
+  for (int h : fw.slices[nd.slice].nodes) {
+    const Node& hd = fw.nodes[h];
+    if (hd.depth == nd.depth + 1 && point_in_polygon(hd.poly[0], nd.poly)) region.push_back(&hd.poly);
+  }
+  return region;
+}
+
+// The share of the area inside `poly` that lies in `material`, sampled on a 32 × 32 grid over its bounds.
+double covered_share(const std::vector<Vec2>& poly, const std::vector<const std::vector<Vec2>*>& material) {
+  Vec2 lo = poly[0], hi = poly[0];
+  for (const Vec2& p : poly) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  constexpr int kGrid = 32;
+  int inside = 0, covered = 0;
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j) {
+      const Vec2 p{lo.x + (hi.x - lo.x) * (i + 0.5) / kGrid, lo.y + (hi.y - lo.y) * (j + 0.5) / kGrid};
+      if (!point_in_polygon(p, poly)) continue;
+      ++inside;
+      covered += in_material(p, material) ? 1 : 0;
+    }
+  return inside > 0 ? static_cast<double>(covered) / inside : 0.0;
+}
+
+// Step 4 (end): holes that open between slices. The tree links contours of equal parity only, so a hole
+// with no partner towards a neighbouring slice would be capped there. Where its ring opens between
+// the slices (the ring's only partner there is one contour whose material leaves a share of the
+// hole's outline outside: a C-shaped section under a ring, as a tilted torus gives), the hole is
+// linked to that contour instead: the ring and its hole are then joined by a bridge across the opening
+// (tile_walls), a saddle that gives the genus the contours imply. A hole over material keeps its
+// cap, a dome into the material.
+void join_opening_holes(FrameWork& fw) {
+  auto& nodes = fw.nodes;
+  auto& slices = fw.slices;
+  auto& pair_links = fw.pair_links;
+  for (std::size_t s = 0; s < slices.size(); ++s)
+    for (int h : slices[s].nodes) {
+      if (nodes[h].depth % 2 == 0) continue;
+      int ring = -1;  // the contour around the hole
+      for (int o : slices[s].nodes)
+        if (nodes[o].depth == nodes[h].depth - 1 && point_in_polygon(nodes[h].poly[0], nodes[o].poly)) ring = o;
+      if (ring < 0) continue;
+      for (bool up : {false, true}) {
+        if ((up ? nodes[h].linked_up : nodes[h].linked_down) || (up ? s + 1 >= slices.size() : s == 0)) continue;
+        auto& links = pair_links[up ? s : s - 1];
+        // (node on slice s, node across) per link of the pair.
+        auto across = [&](std::pair<int, int> l) { return up ? l : std::make_pair(l.second, l.first); };
+        std::vector<int> partners;
+        for (auto l : links)
+          if (across(l).first == ring) partners.push_back(across(l).second);
+        if (partners.size() != 1) continue;
+        const int c = partners[0];
+        bool only_ring = true;  // c joins nothing on slice s but the ring and its holes
+        for (auto l : links) {
+          const auto [mine, other] = across(l);
+          only_ring = only_ring && (other != c || mine == ring || nodes[mine].depth == nodes[h].depth);
+        }
+        if (!only_ring) continue;
+        // The hole opens where its outline leaves the partner's material, which lies over the ring (a C-shaped
+        // section), not where the partner covers the hole (a wall closing over its cavity, as at an apex).
+        const auto material = material_of(fw, c);
+        std::size_t outside = 0;
+        for (const Vec2& p : nodes[h].poly) outside += in_material(p, material) ? 0 : 1;
+        if (static_cast<double>(outside) < kOpeningShare * static_cast<double>(nodes[h].poly.size()) ||
+            covered_share(nodes[h].poly, material) > kCoveredShare)
+          continue;
+        links.push_back(up ? std::make_pair(h, c) : std::make_pair(c, h));
+        (up ? nodes[h].linked_up : nodes[h].linked_down) = true;
+        ++fw.rep.opening_holes;
+      }
+    }
+}
+
 // Step 4: the links as node pairs, per slice pair (and in the report).
 void link_nodes(FrameWork& fw, int frame) {
   auto& rep = fw.rep;
@@ -716,6 +851,7 @@ void link_nodes(FrameWork& fw, int frame) {
     nodes[sa < sb ? na : nb].linked_up = true;
     nodes[sa < sb ? nb : na].linked_down = true;
   }
+  join_opening_holes(fw);
   if (fw.replay) {  // the same links as the plan's frame, in its order
     auto sorted = [](PairLinks p) {
       for (auto& v : p) std::sort(v.begin(), v.end());
@@ -815,6 +951,18 @@ void branch_groups(const std::vector<Node>& nodes, const std::vector<int>& lower
   ug = lower.size() > 1 ? sg : mg;
 }
 
+// The other side of a branching for merge_with_bridges: its material, and whether `members` mix a ring and
+// its hole (an opening hole, join_opening_holes).
+BridgeSide bridge_side(const FrameWork& fw, const std::vector<int>& members, const std::vector<int>& other) {
+  BridgeSide side;
+  for (int m : members) side.opening = side.opening || fw.nodes[m].depth % 2 != fw.nodes[members[0]].depth % 2;
+  for (int o : other)
+    for (const auto* poly : material_of(fw, o))  // each polygon once: `other` may hold a ring and its hole
+      if (std::find(side.other_material.begin(), side.other_material.end(), poly) == side.other_material.end())
+        side.other_material.push_back(poly);
+  return side;
+}
+
 // Step 5: the walls between connected contours: rows, bands, bridges at branchings, or the paper's
 // Delaunay tiling.
 void tile_walls(FrameWork& fw) {
@@ -850,17 +998,22 @@ void tile_walls(FrameWork& fw) {
                                " branching joined through bridges on both slices; check the surface there");
       // The paper's tiling: CDT of the projected symmetric difference with CAT lifting points.
       auto& dest = opt.remesh ? to_remesh : b.triangles;
-      const bool tiled = opt.tiling == Tiling::Delaunay && !(opt.rows && lower.size() == 1 && upper.size() == 1) &&
+      const bool opening = bridge_side(fw, lower, upper).opening || bridge_side(fw, upper, lower).opening;
+      const bool tiled = (opt.tiling == Tiling::Delaunay || opening) &&
+                         !(opt.rows && lower.size() == 1 && upper.size() == 1) &&
                          tile_delaunay(fw, s, lower, upper, gap, dest);
       if (tiled) continue;
       // Bridge height above the slice of the several contours: the saddle where they join lies near
       // the single contour's slice (kBridgeRise of the gap puts the faired saddle closer to analytic
       // saddles than half the gap does; docs/algorithms/one_frame_surface.md).
       const double rise = (both ? kBridgeRiseBoth : kBridgeRise) * gap;
-      const auto lc = lower.size() == 1 ? nodes[lower[0]].chain
-                                        : merge_with_bridges(lower, nodes, slices[s].plane, rise, opt.edge, b);
-      const auto uc = upper.size() == 1 ? nodes[upper[0]].chain
-                                        : merge_with_bridges(upper, nodes, slices[s + 1].plane, -rise, opt.edge, b);
+      auto merged = [&](const std::vector<int>& side, const std::vector<int>& other, const Plane& plane, double sign) {
+        if (side.size() == 1) return nodes[side[0]].chain;
+        const BridgeSide bs = bridge_side(fw, side, other);
+        return merge_with_bridges(side, nodes, plane, sign * (bs.opening ? gap : rise), opt.edge, b, bs);
+      };
+      const auto lc = merged(lower, upper, slices[s].plane, 1.0);
+      const auto uc = merged(upper, lower, slices[s + 1].plane, -1.0);
       if (opt.rows && lower.size() == 1 && upper.size() == 1) {
         // Rows between the two contours, tiled pairwise: well-shaped triangles without remeshing.
         const double spacing = opt.row_spacing > 0 ? opt.row_spacing : opt.edge;

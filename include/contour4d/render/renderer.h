@@ -54,6 +54,9 @@ class OffscreenRenderer {
 
   //! Classical path: keeps the frames on the CPU; draw_classical uploads frame f's mesh each call.
   void load_classical(const MeshSequence& seq);
+  //! The same, with the camera fitted to `camera`'s frames instead (frames interpolated from `camera` drawn
+  //! with the camera the compact path fits to the stored frames).
+  void load_classical(const MeshSequence& seq, const MeshSequence& camera);
   //! Uploads frame `f` in full (glBufferSubData) and draws; returns the bytes uploaded.
   std::size_t draw_classical(std::size_t f);
 

@@ -54,6 +54,7 @@ struct SurfaceReport {
   int contours = 0;                     //!< contours of the frame used
   int caps = 0;                         //!< caps made (CapStyle::Open: ends left open)
   int branchings = 0;                   //!< slice pairs joined through bridges (1→n, n→1, n→m)
+  int opening_holes = 0;                //!< holes joined to their ring's partner where the ring opens between slices
   std::size_t vertices = 0;             //!< output vertex count
   std::size_t triangles = 0;            //!< output triangle count
   bool closed = false;                  //!< closed 2-manifold, consistently oriented
