@@ -510,6 +510,7 @@ struct FrameWork {
   SurfacePlan* record = nullptr;        // filled with this frame's decisions (plan_surface)
   const SurfacePlan* replay = nullptr;  // the decisions to follow instead (reconstruct_frame_on_plan)
   std::size_t next_band = 0, next_cap = 0;
+  bool delaunay_branchings = false;  // branching groups tiled the paper's way (the retry of a failed frame)
 };
 
 // A frame whose contours do not fit the plan it is built on (another topology).
@@ -999,7 +1000,7 @@ void tile_walls(FrameWork& fw) {
       // The paper's tiling: CDT of the projected symmetric difference with CAT lifting points.
       auto& dest = opt.remesh ? to_remesh : b.triangles;
       const bool opening = bridge_side(fw, lower, upper).opening || bridge_side(fw, upper, lower).opening;
-      const bool tiled = (opt.tiling == Tiling::Delaunay || opening) &&
+      const bool tiled = (opt.tiling == Tiling::Delaunay || opening || fw.delaunay_branchings) &&
                          !(opt.rows && lower.size() == 1 && upper.size() == 1) &&
                          tile_delaunay(fw, s, lower, upper, gap, dest);
       if (tiled) continue;
@@ -1501,6 +1502,21 @@ SurfaceParams surface_params(const SurfaceOptions& options, const SurfaceTuning&
 TriangleMesh reconstruct_frame_tuned(const Sequence& seq, int frame, const SurfaceParams& opt, SurfaceReport* report) {
   FrameWork fw(opt);
   TriangleMesh out = run_steps(fw, seq, frame);
+  // Bridges at a branching can fold the band where the sections merge far from where they are closest (two
+  // arcs joining into one C-shaped section): a surface that fails its checks there is built once more with
+  // the paper's tiling at its branchings, whose heights follow the distances to both slices' contours.
+  const bool failed = fw.rep.self_intersects || (!fw.rep.closed && opt.caps != CapStyle::Open);
+  if (failed && fw.rep.branchings > 0 && opt.tiling == Tiling::Bands && opt.check_self_intersections) {
+    FrameWork retry(opt);
+    retry.delaunay_branchings = true;
+    TriangleMesh second = run_steps(retry, seq, frame);
+    if (retry.rep.closed && !retry.rep.self_intersects) {
+      retry.rep.warnings.push_back(
+          "the band tiling's bridges folded at a branching; the paper's tiling was used there");
+      out = std::move(second);
+      fw.rep = std::move(retry.rep);
+    }
+  }
   if (report) *report = std::move(fw.rep);
   return out;
 }

@@ -2,7 +2,7 @@
 """Tilted tori, where holes appear and vanish between slices: each must come out as one valid genus-1 surface
 whose volume between the first and last slice planes is within 2 % of the true torus's there.
 
-    check_tilted_torus.py CLI SEEDS [--frames N]
+    check_tilted_torus.py CLI CASES [--frames N]     (CASES: first:last, last excluded, or a comma list of them)
 
 Case 0 is the issue's torus (tilt 10°, R 30 mm, tube 12 mm, 5 mm slices, 1 mm pixels); cases 1.. are drawn
 from a seeded family (tilt 3–30°, R 20–35 mm, tube 8–14 mm, slices 3 mm to 0.6 × the tube radius apart,
@@ -114,13 +114,16 @@ def run(cli, seed, frames, work):
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("cli")
-    p.add_argument("seeds", help="first:last (last excluded), e.g. 0:6")
+    p.add_argument("cases", help="first:last (last excluded) or a comma list of them, e.g. 0:8,24:25")
     p.add_argument("--frames", type=int, default=1)
     p.add_argument("--max-volume-error", type=float, default=2.0, help="percent")
     a = p.parse_args()
-    first, last = (int(x) for x in a.seeds.split(":"))
+    seeds = []
+    for part in a.cases.split(","):
+        first, last = (int(x) for x in part.split(":"))
+        seeds += range(first, last)
     with tempfile.TemporaryDirectory() as work:
-        for seed in range(first, last):
+        for seed in seeds:
             line, err = run(a.cli, seed, a.frames, work)
             print(line, flush=True)
             if err is None or err > a.max_volume_error:
