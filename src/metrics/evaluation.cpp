@@ -390,7 +390,10 @@ std::string format_evaluation_table(const Evaluation& ev) {
         c->creases->ends_ratio());
   if (!ev.frames.empty()) {
     const std::size_t n = ev.frames.size();
-    for (std::size_t f : {std::size_t{0}, n / 2, n - 1}) {
+    std::vector<std::size_t> shown{0};  // the first, middle and last frame, each once
+    for (std::size_t f : {n / 2, n - 1})
+      if (f != shown.back()) shown.push_back(f);
+    for (std::size_t f : shown) {
       const AngleQuality& q = ev.frames[f].quality;
       out += fmt::format(
           "  angles frame {:>3}: 40-50 {:.2f}%  50-60 {:.2f}%  60-70 {:.2f}%  70-80 {:.2f}%  total {:.2f}%  "

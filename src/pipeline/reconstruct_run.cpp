@@ -210,7 +210,7 @@ ResultCheck run_checks(const ReconstructRunOptions& a, const Sequence& seq, cons
 }
 
 void one_frame(const ReconstructRunOptions& a, const Sequence& seq, const Reconstruct4DOptions& opt,
-               ReconstructRun& run, Json& report) {
+               ReconstructRun& run, Json& report, const RunMessage& say) {
   if (a.frame >= static_cast<int>(seq.frames.size()))
     throw InvalidInput(ErrorCode::Usage, Location{run.input},
                        fmt::format("--frame {} is out of range: the input has {} frames", a.frame, seq.frames.size()));
@@ -220,6 +220,11 @@ void one_frame(const ReconstructRunOptions& a, const Sequence& seq, const Recons
   run.result.positions = {mesh.positions};
   run.result.times_ms = {seq.frames[static_cast<std::size_t>(a.frame)].time_ms};
   report["frames"] = {{{"frame", a.frame}, {"surface", surface_json(sr)}}};
+  if (!say) return;
+  if (sr.opening_holes > 0)
+    say(fmt::format("  {} hole(s) open into the outside between slices (a C-shaped section beyond a ring)",
+                    sr.opening_holes));
+  for (const std::string& w : sr.warnings) say("  warning: " + w);
 }
 
 // Where frames were carried onto a changed topology, the result must also keep triangles this well shaped in
@@ -444,7 +449,7 @@ ReconstructRun reconstruct_run(const InputResult& read, const std::string& input
   }
   const bool closed = opt.surface.caps != CapStyle::Open;
   if (a.frame >= 0) {
-    one_frame(a, seq, opt, run, report);
+    one_frame(a, seq, opt, run, report, say);
     run.check = run_checks(a, seq, opt.surface.label, closed, run.result);
   } else {
     all_frames(a, seq, opt, closed, run, report, say);
