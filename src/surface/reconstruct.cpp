@@ -778,9 +778,9 @@ double covered_share(const std::vector<Vec2>& poly, const std::vector<const std:
 // with no partner towards a neighbouring slice would be capped there. Where its ring opens between
 // the slices (the ring's only partner there is one contour whose material leaves a share of the
 // hole's outline outside: a C-shaped section under a ring, as a tilted torus gives), the hole is
-// linked to that contour instead: the ring and its hole are then joined by a bridge across the opening
-// (tile_walls), a saddle that gives the genus the contours imply. A hole over material keeps its
-// cap, a dome into the material.
+// linked to that contour instead: the ring, its hole and the contour are then one group of the walls
+// (tile_walls: the projected symmetric difference, or a bridge across the opening), which gives the
+// genus the contours imply. A hole over material keeps its cap, a dome into the material.
 void join_opening_holes(FrameWork& fw) {
   auto& nodes = fw.nodes;
   auto& slices = fw.slices;
@@ -952,11 +952,17 @@ void branch_groups(const std::vector<Node>& nodes, const std::vector<int>& lower
   ug = lower.size() > 1 ? sg : mg;
 }
 
-// The other side of a branching for merge_with_bridges: its material, and whether `members` mix a ring and
-// its hole (an opening hole, join_opening_holes).
+// True where `members` (one slice of a group) mix a ring and its hole: an opening hole (join_opening_holes).
+bool mixes_parity(const FrameWork& fw, const std::vector<int>& members) {
+  for (int m : members)
+    if (fw.nodes[m].depth % 2 != fw.nodes[members[0]].depth % 2) return true;
+  return false;
+}
+
+// The other side of a branching for merge_with_bridges: its material, and whether `members` are an opening.
 BridgeSide bridge_side(const FrameWork& fw, const std::vector<int>& members, const std::vector<int>& other) {
   BridgeSide side;
-  for (int m : members) side.opening = side.opening || fw.nodes[m].depth % 2 != fw.nodes[members[0]].depth % 2;
+  side.opening = mixes_parity(fw, members);
   for (int o : other)
     for (const auto* poly : material_of(fw, o))  // each polygon once: `other` may hold a ring and its hole
       if (std::find(side.other_material.begin(), side.other_material.end(), poly) == side.other_material.end())
@@ -999,7 +1005,7 @@ void tile_walls(FrameWork& fw) {
                                " branching joined through bridges on both slices; check the surface there");
       // The paper's tiling: CDT of the projected symmetric difference with CAT lifting points.
       auto& dest = opt.remesh ? to_remesh : b.triangles;
-      const bool opening = bridge_side(fw, lower, upper).opening || bridge_side(fw, upper, lower).opening;
+      const bool opening = mixes_parity(fw, lower) || mixes_parity(fw, upper);
       const bool tiled = (opt.tiling == Tiling::Delaunay || opening || fw.delaunay_branchings) &&
                          !(opt.rows && lower.size() == 1 && upper.size() == 1) &&
                          tile_delaunay(fw, s, lower, upper, gap, dest);
