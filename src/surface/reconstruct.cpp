@@ -1359,6 +1359,9 @@ void repair_angles(FrameWork& fw, TriangleMesh& mesh, const std::vector<std::arr
     fo.only_below_deg = opt.angle_repair.target_deg;
     if (flip_edges_delaunay(mesh, constrained, fo) > 0)
       repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
+    // A plan's mesh is laid onto every frame: an ear turns flat where a frame's contour straightens.
+    if (fw.record && flip_ears(mesh, constrained) > 0)
+      repair_small_angles(mesh.positions, mesh.triangles, fixed, snap_to, opt.angle_repair);
   }
 }
 

@@ -310,6 +310,25 @@ std::size_t flip_round(TriangleMesh& mesh, OwnerTable& o, const FixedEdges& fixe
   return flipped_now;
 }
 
+// Whether the chord a-b of ear (a, b, c) (c the middle contour vertex) is flipped into (c, a, d), (c, d, b):
+// d off every contour, the edge c-d not there yet, the new pair facing as the old one (no fold) and its smallest
+// angle at least kEarFloorDeg or larger than the old pair's.
+constexpr double kEarFloorDeg = 15.0;
+
+bool wants_ear_flip(const OwnerTable& o, const std::vector<Vec3>& x, const std::vector<char>& on_contour,
+                    std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+  if (on_contour[d] || c == d || owner_of(o, c, d) != kNone || owner_of(o, d, c) != kNone) return false;
+  const Vec3 n1 = cross(x[b] - x[a], x[c] - x[a]), n2 = cross(x[a] - x[b], x[d] - x[b]);
+  const double l1 = norm(n1), l2 = norm(n2);
+  if (!(l2 > 0.0)) return false;
+  const Vec3 n = l1 > 0.02 * dot(x[b] - x[a], x[b] - x[a]) ? n1 / l1 + n2 / l2 : n2 / l2;
+  const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
+  if (dot(m1, n) <= 0 || dot(m2, n) <= 0) return false;
+  const double before = std::min(min_angle_deg(x[a], x[b], x[c]), min_angle_deg(x[b], x[a], x[d]));
+  const double after = std::min(min_angle_deg(x[c], x[a], x[d]), min_angle_deg(x[c], x[d], x[b]));
+  return after >= kEarFloorDeg || after > before;
+}
+
 }  // namespace
 
 std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
@@ -327,6 +346,37 @@ std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array
     flips += flipped_now;
     if (flipped_now == 0) break;
   }
+  return flips;
+}
+
+std::size_t flip_ears(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained) {
+  const std::size_t nv = mesh.positions.size();
+  bool plain = false;
+  OwnerTable owners = owner_table(mesh.triangles, nv, plain);
+  const FixedEdges fixed = fixed_edges(constrained, nv);
+  std::vector<char> on_contour(nv, 0);
+  for (const auto& e : constrained) on_contour[e[0]] = on_contour[e[1]] = 1;
+  auto contour_edge = [&](std::uint32_t u, std::uint32_t w) { return is_fixed(fixed, std::min(u, w), std::max(u, w)); };
+  auto& tris = mesh.triangles;
+  std::size_t flips = 0;
+  for (std::size_t t1 = 0; t1 < tris.size(); ++t1)
+    for (int k = 0; k < 3; ++k) {
+      // Ear: the edges at c are contour edges, the chord a-b is not.
+      const std::uint32_t a = tris[t1][k], b = tris[t1][(k + 1) % 3], c = tris[t1][(k + 2) % 3];
+      if (!contour_edge(b, c) || !contour_edge(c, a) || contour_edge(a, b)) continue;
+      const std::size_t t2 = owner_of(owners, b, a);
+      if (t2 == kNone || owner_of(owners, a, b) != t1) continue;
+      const std::uint32_t d = third(tris[t2], a, b);
+      if (!wants_ear_flip(owners, mesh.positions, on_contour, a, b, c, d)) continue;
+      erase_owner(owners, a, b);
+      erase_owner(owners, b, a);
+      tris[t1] = {c, a, d};
+      tris[t2] = {c, d, b};
+      for (std::size_t t : {t1, t2})
+        for (int i = 0; i < 3; ++i) set_owner(owners, tris[t][i], tris[t][(i + 1) % 3], t);
+      ++flips;
+      break;
+    }
   return flips;
 }
 

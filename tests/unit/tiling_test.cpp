@@ -192,6 +192,55 @@ TEST(Refine, FlipsRemoveAFlatTriangleAndKeepContourEdges) {
   for (const auto& e : contour) EXPECT_EQ(edges[std::make_pair(e[0], e[1])], 1) << e[0] << "-" << e[1];
 }
 
+TEST(Refine, EarsAreFlippedSoThatAStraightenedContourLeavesNoFlatTriangle) {
+  // A cap on a closed contour of 2k vertices whose every other vertex is an ear's middle (three contour
+  // vertices in one triangle). A mesh laid onto another frame where the contour is straight there (the middle
+  // vertex on its chord) must have no flat triangle: flip_ears makes each middle vertex join the inside.
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    std::uint64_t state = seed * 7919;
+    auto next = [&state] {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      return static_cast<double>(state >> 11) / 9007199254740992.0;  // [0, 1)
+    };
+    const std::uint32_t k = 5 + static_cast<std::uint32_t>(seed % 4), n = 2 * k;
+    c4d::TriangleMesh m;
+    const double pi = 3.14159265358979323846;
+    for (std::uint32_t i = 0; i < n; ++i) {  // contour vertices 0 .. n-1, counter-clockwise
+      const double a = 2 * pi * (i + 0.2 * (next() - 0.5)) / n, r = 10 + next();
+      m.positions.push_back({r * std::cos(a), r * std::sin(a), 0});
+    }
+    for (std::uint32_t i = 0; i < k; ++i) {  // inner vertices n .. n+k-1, beside each ear's middle
+      const double a = 2 * pi * (2 * i + 1) / n;
+      m.positions.push_back({6 * std::cos(a), 6 * std::sin(a), 0.3 * next()});
+    }
+    m.positions.push_back({0, 0, 0.5});  // the centre, n + k
+    std::vector<std::array<std::uint32_t, 2>> contour;
+    for (std::uint32_t i = 0; i < n; ++i) contour.push_back({i, (i + 1) % n});
+    for (std::uint32_t i = 0; i < k; ++i) {
+      const std::uint32_t b0 = 2 * i, b1 = 2 * i + 1, b2 = (2 * i + 2) % n, in = n + i, in2 = n + (i + 1) % k;
+      m.triangles.push_back({b0, b1, b2});  // the ear
+      m.triangles.push_back({b0, b2, in});
+      m.triangles.push_back({in, b2, in2});
+      m.triangles.push_back({n + k, in, in2});
+    }
+    EXPECT_EQ(c4d::flip_ears(m, contour), k) << "seed " << seed;
+    c4d::TriangleMesh straight = m;  // each ear's middle on its chord
+    for (std::uint32_t i = 0; i < k; ++i)
+      straight.positions[2 * i + 1] = 0.5 * (m.positions[2 * i] + m.positions[(2 * i + 2) % n]);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    for (const auto& t : straight.triangles) {
+      const Vec3 nrm = c4d::cross(straight.positions[t[1]] - straight.positions[t[0]],
+                                  straight.positions[t[2]] - straight.positions[t[0]]);
+      EXPECT_GT(c4d::norm(nrm), 1e-3) << "flat triangle, seed " << seed;
+      EXPECT_GT(nrm.z, 0.0) << "flipped triangle, seed " << seed;
+      for (int j = 0; j < 3; ++j) ++edges[{std::min(t[j], t[(j + 1) % 3]), std::max(t[j], t[(j + 1) % 3])}];
+    }
+    for (const auto& e : contour)
+      EXPECT_EQ(edges[std::make_pair(std::min(e[0], e[1]), std::max(e[0], e[1]))], 1) << "seed " << seed;
+    EXPECT_EQ(c4d::flip_ears(m, contour), 0u) << "no ear is left, seed " << seed;
+  }
+}
+
 TEST(Refine, FlipsSkippingAcuteEdgesAreThoseOfTestingEveryEdge) {
   // A jittered, sheared grid on a gently bent sheet, each cell split along a random diagonal: many edges fail
   // the Delaunay test and flips cascade over several rounds. Skipping the edges beside two acute

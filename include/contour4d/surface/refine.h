@@ -51,4 +51,11 @@ struct FlipOptions {
 std::size_t flip_edges_delaunay(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained,
                                 const FlipOptions& options = {});
 
+//! Flips the chord of every ear, a triangle of three consecutive contour vertices (two constrained edges),
+//! so that its middle vertex joins the vertex across the chord, where that vertex is off the contours and the
+//! flip folds nothing (and keeps the pair's smallest angle at 15° or raises it). An ear is fine in the frame it
+//! was made on but turns flat wherever that contour straightens: a mesh laid onto other frames (the plan of
+//! rebuild.h) must have none. Vertex positions do not change. Returns the flips made.
+std::size_t flip_ears(TriangleMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& constrained);
+
 }  // namespace c4d
