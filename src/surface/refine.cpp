@@ -240,6 +240,17 @@ void mark(const RoundEdges& r, std::vector<char>& candidate, std::uint32_t u, st
   }
 }
 
+// Edge a-b between triangles t1 = (a, b, c) and t2 = (b, a, d) flipped into (c, a, d), (c, d, b).
+void flip(std::vector<Triangle>& tris, OwnerTable& o, std::size_t t1, std::size_t t2, std::uint32_t a, std::uint32_t b,
+          std::uint32_t c, std::uint32_t d) {
+  erase_owner(o, a, b);
+  erase_owner(o, b, a);
+  tris[t1] = {c, a, d};
+  tris[t2] = {c, d, b};
+  for (std::size_t t : {t1, t2})
+    for (int k = 0; k < 3; ++k) set_owner(o, tris[t][k], tris[t][(k + 1) % 3], t);
+}
+
 // Whether edge a-b between triangles (a, b, c) and (b, a, d) is flipped into (c, a, d), (c, d, b):
 // not Delaunay, the new edge c-d not there yet, the pair nearly coplanar (or one near-flat) and no fold.
 bool wants_flip(const OwnerTable& o, const std::vector<Vec3>& x, std::uint32_t a, std::uint32_t b, std::uint32_t c,
@@ -295,12 +306,7 @@ std::size_t flip_round(TriangleMesh& mesh, OwnerTable& o, const FixedEdges& fixe
     if (t1 == kNone || t2 == kNone) continue;  // boundary or already flipped away
     const std::uint32_t c = third(tris[t1], a, b), d = third(tris[t2], a, b);
     if (!wants_flip(o, x, a, b, c, d, options, cos_dihedral)) continue;
-    erase_owner(o, a, b);
-    erase_owner(o, b, a);
-    tris[t1] = {c, a, d};
-    tris[t2] = {c, d, b};
-    for (std::size_t t : {t1, t2})
-      for (int k = 0; k < 3; ++k) set_owner(o, tris[t][k], tris[t][(k + 1) % 3], t);
+    flip(tris, o, t1, t2, a, b, c, d);
     // The edges whose triangles changed get the full test where they come later in this round.
     if (plain)
       for (const auto& [u, w] : {Edge{a, b}, Edge{b, c}, Edge{c, a}, Edge{a, d}, Edge{d, b}, Edge{c, d}})
@@ -368,12 +374,7 @@ std::size_t flip_ears(TriangleMesh& mesh, const std::vector<std::array<std::uint
       if (t2 == kNone || owner_of(owners, a, b) != t1) continue;
       const std::uint32_t d = third(tris[t2], a, b);
       if (!wants_ear_flip(owners, mesh.positions, on_contour, a, b, c, d)) continue;
-      erase_owner(owners, a, b);
-      erase_owner(owners, b, a);
-      tris[t1] = {c, a, d};
-      tris[t2] = {c, d, b};
-      for (std::size_t t : {t1, t2})
-        for (int i = 0; i < 3; ++i) set_owner(owners, tris[t][i], tris[t][(i + 1) % 3], t);
+      flip(tris, owners, t1, t2, a, b, c, d);
       ++flips;
       break;
     }
