@@ -21,16 +21,24 @@
 
 namespace c4d {
 
-double min_angle_deg(Vec3 a, Vec3 b, Vec3 c) {
+namespace {
+
+// The cosine of the smallest angle of triangle (a, b, c), clamped to [−1, 1]; 1 when degenerate.
+double smallest_angle_cos(Vec3 a, Vec3 b, Vec3 c) {
   const double la = distance(b, c), lb = distance(c, a), lc = distance(a, b);
-  if (!(la > 0 && lb > 0 && lc > 0)) return 0.0;
+  if (!(la > 0 && lb > 0 && lc > 0)) return 1.0;
   // The smallest angle faces the shortest side.
   double s = la, p = lb, q = lc;
   if (p < s) std::swap(s, p);
   if (q < s) std::swap(s, q);
-  const double cosv = std::clamp((p * p + q * q - s * s) / (2 * p * q), -1.0, 1.0);
-  return std::acos(cosv) * 180.0 / std::numbers::pi;
+  return std::clamp((p * p + q * q - s * s) / (2 * p * q), -1.0, 1.0);
 }
+
+double cos_to_deg(double cosv) { return std::acos(cosv) * 180.0 / std::numbers::pi; }
+
+}  // namespace
+
+double min_angle_deg(Vec3 a, Vec3 b, Vec3 c) { return cos_to_deg(smallest_angle_cos(a, b, c)); }
 
 namespace {
 
@@ -150,23 +158,46 @@ void list_moved(const std::vector<Vec3>& x, const std::vector<Triangle>& triangl
   }
 }
 
+// Candidates for ring_intersects: each triangle once (`seen` holds the call's stamp), and only those whose box
+// meets the ring's (no other can cross it).
+struct NearTriangles {
+  std::vector<std::uint32_t> seen;  // per triangle, the stamp of the last call that listed it
+  std::uint32_t stamp = 0;
+  std::vector<std::uint32_t> list;
+};
+
 // True when one of `fs` (the triangles of a vertex at its new position) intersects a triangle of
 // the grid or of `moved` other than through a shared vertex or edge.
 bool ring_intersects(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles,
-                     std::span<const std::uint32_t> fs, const TriangleGrid& grid, const MovedCells& moved) {
+                     std::span<const std::uint32_t> fs, const TriangleGrid& grid, const MovedCells& moved,
+                     NearTriangles& near) {
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (std::uint32_t f : fs)
     for (std::uint32_t w : triangles[f]) grow(lo, hi, x[w]);
+  near.seen.resize(triangles.size(), 0);
+  if (++near.stamp == 0) {  // wrapped: forget every stamp
+    std::fill(near.seen.begin(), near.seen.end(), 0);
+    near.stamp = 1;
+  }
+  near.list.clear();
+  auto consider = [&](std::uint32_t g) {
+    if (g >= triangles.size() || near.seen[g] == near.stamp) return;
+    near.seen[g] = near.stamp;
+    Vec3 glo{1e300, 1e300, 1e300}, ghi{-1e300, -1e300, -1e300};
+    for (std::uint32_t w : triangles[g])
+      if (w < x.size()) grow(glo, ghi, x[w]);
+    // Closed boxes; a box with a NaN corner is kept (intersects_any decides about it).
+    if (glo.x > hi.x || ghi.x < lo.x || glo.y > hi.y || ghi.y < lo.y || glo.z > hi.z || ghi.z < lo.z) return;
+    near.list.push_back(g);
+  };
   // The triangles of the vertices being tried may have moved since binning: widen the box by half a cell.
   const Vec3 pad{0.5 * grid.cell, 0.5 * grid.cell, 0.5 * grid.cell};
-  std::vector<std::uint32_t> near;
   grid.visit(lo - pad, hi + pad, [&](std::size_t c) {
-    near.insert(near.end(), grid.items.begin() + grid.start[c], grid.items.begin() + grid.start[c + 1]);
-    if (const auto it = moved.find(c); it != moved.end()) near.insert(near.end(), it->second.begin(), it->second.end());
+    for (std::uint32_t k = grid.start[c]; k < grid.start[c + 1]; ++k) consider(grid.items[k]);
+    if (const auto it = moved.find(c); it != moved.end())
+      for (std::uint32_t g : it->second) consider(g);
   });
-  std::sort(near.begin(), near.end());
-  near.erase(std::unique(near.begin(), near.end()), near.end());
-  return intersects_any(x, triangles, std::vector<std::uint32_t>(fs.begin(), fs.end()), near);
+  return intersects_any(x, triangles, std::vector<std::uint32_t>(fs.begin(), fs.end()), near.list);
 }
 
 // The eight steps of the search (cos, sin of d·π/4), worked out once.
@@ -209,6 +240,7 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
   // Binned once, when a move is first to be checked; the triangles moved since are listed beside it.
   std::optional<TriangleGrid> grid;
   MovedCells moved_cells;
+  NearTriangles near;
   for (int pass = 0; pass < options.passes; ++pass) {
     std::vector<char> active(positions.size(), 0);
     for (std::size_t v = 0; v < positions.size(); ++v)
@@ -258,19 +290,18 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
       auto quality = [&](Vec3 p) {
         const Vec3 keep = positions[v];
         positions[v] = p;
-        double q = 180.0;
-        for (std::size_t k = 0; k < fs.size(); ++k) {
+        // The ring's smallest angle: one arccosine, of the largest cosine (the arccosine decreases).
+        double largest_cos = -1.0;
+        bool folds = false;
+        for (std::size_t k = 0; k < fs.size() && !folds; ++k) {
           const Triangle& t = triangles[fs[k]];
           const Vec3 nk = face_normal(positions, t);
           const double a = norm(nk), b = norm(n0[k]);
-          if (!(a > 0) || dot(nk, n0[k]) < cos_fold * a * b) {
-            q = -1.0;
-            break;
-          }
-          q = std::min(q, min_angle_deg(positions[t[0]], positions[t[1]], positions[t[2]]));
+          folds = !(a > 0) || dot(nk, n0[k]) < cos_fold * a * b;
+          largest_cos = std::max(largest_cos, smallest_angle_cos(positions[t[0]], positions[t[1]], positions[t[2]]));
         }
         positions[v] = keep;
-        return q;
+        return folds ? -1.0 : cos_to_deg(largest_cos);
       };
       Vec3 best = positions[v];
       double best_q = quality(best);
@@ -307,7 +338,7 @@ std::size_t optimise(std::vector<Vec3>& positions, const std::vector<Triangle>& 
           if (!is_finite(c) || quality(c) <= start_q + 1e-9) continue;
           positions[v] = c;
           if (!grid) grid = bin_triangles(positions, triangles);
-          if (!ring_intersects(positions, triangles, fs, *grid, moved_cells)) {
+          if (!ring_intersects(positions, triangles, fs, *grid, moved_cells, near)) {
             ++pass_moves;
             moved[v] = 1;
             list_moved(positions, triangles, fs, *grid, moved_cells);
