@@ -2,6 +2,9 @@
 #include "contour4d/motion/reconstruct4d.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <condition_variable>
 #include <exception>
@@ -13,6 +16,7 @@
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
+#include "contour4d/core/contour.h"
 #include "contour4d/core/errors.h"
 #include "contour4d/metrics/quality.h"
 #include "contour4d/metrics/topology.h"
@@ -115,15 +119,76 @@ CarriedShape carried_shape(const TriangleMesh& m) {
   return {check_topology(m, exact).self_intersections, q.bad_triangles, m.triangles.size(), q.pct_40_80};
 }
 
+// The end contours of frame t (the lowest and highest slice along the stack, as without_ends counts them) and how
+// far each changed against frame s: |log| of the ratio of the slice's contour perimeters in t and s (infinite
+// where s has no contour on that slice).
+std::array<double, 2> end_changes(const Sequence& seq, int s, int t) {
+  const Frame& to = seq.frames[static_cast<std::size_t>(t)];
+  std::vector<std::pair<double, const Slice*>> order;
+  for (const Slice& sl : to.slices)
+    if (!sl.contours.empty()) order.emplace_back(dot(slice_plane(seq, sl).origin, seq.normal), &sl);
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::array<double, 2> change{0.0, 0.0};
+  if (order.size() < 3) return change;
+  auto length = [](const Slice& sl) {
+    double l = 0.0;
+    for (const Contour& c : sl.contours) l += perimeter(c.points);
+    return l;
+  };
+  for (int e = 0; e < 2; ++e) {
+    const Slice& end = *(e == 0 ? order.front().second : order.back().second);
+    double from = 0.0;
+    for (const Slice& sl : seq.frames[static_cast<std::size_t>(s)].slices)
+      if (sl.id == end.id) from = length(sl);
+    const double now = length(end);
+    change[static_cast<std::size_t>(e)] =
+        from > 0.0 && now > 0.0 ? std::abs(std::log(now / from)) : std::numeric_limits<double>::infinity();
+  }
+  return change;
+}
+
+// The tries after the first for frame t carried from frame s (without_ends' `ends`): more smoothing alone, then
+// also the end contour that changed most against s left out of the matching, then the other, then both.
+std::array<int, 4> retry_order(const Sequence& seq, int s, int t) {
+  const std::array<double, 2> change = end_changes(seq, s, t);
+  return change[1] > change[0] ? std::array<int, 4>{0, 2, 1, 3} : std::array<int, 4>{0, 1, 2, 3};
+}
+
+// Each carried frame's own one-frame surface (its geometry only), built once for the first carry and its retries,
+// in parallel; the lowest frame's error is thrown.
+std::map<int, TriangleMesh> own_surfaces(const Sequence& seq, const std::vector<int>& frames,
+                                         const SurfaceOptions& options) {
+  SurfaceOptions own = options;
+  own.geometry_only = true;
+  std::vector<TriangleMesh> built(frames.size());
+  std::vector<std::exception_ptr> errors(frames.size());
+  tbb::parallel_for(std::size_t{0}, frames.size(), [&](std::size_t k) {
+    try {
+      built[k] = reconstruct_frame(seq, frames[k], own);
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  });
+  std::map<int, TriangleMesh> out;
+  std::exception_ptr first;
+  int first_frame = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    if (errors[k] && (!first || frames[k] < first_frame)) first = errors[k], first_frame = frames[k];
+    out[frames[k]] = std::move(built[k]);
+  }
+  if (first) std::rethrow_exception(first);
+  return out;
+}
+
 // The frames that do not fit the plan (a contour that appears, vanishes, splits or merges) or folded on it:
 // the nearest rebuilt frame's mesh (in the cycle; the earlier one on a tie) carried onto each frame's own
 // surface (carry.h), one carry per source frame. A carried frame whose triangles cross or are squeezed (more
 // than 1 % with an angle below 25°, or less than 85 % of the angles in 40–80°) is carried again with more
-// smoothing rounds (kRetryRelaxRounds), then also with an end contour (then the other, then both) left out of
-// the matching: a base contour that shrank to a fraction of the source's folds or squeezes the band above it,
-// while the part beyond the next slice laid onto the frame's own dome (carry.h) keeps its shape. The first try
-// that is good is kept, else the best (fewest crossings, then fewest poor triangles, then the largest share in
-// 40–80°).
+// smoothing rounds (kRetryRelaxRounds), then also with an end contour (the one that changed most against the
+// source first, then the other, then both) left out of the matching: a base contour that shrank to a fraction
+// of the source's folds or squeezes the band above it, while the part beyond the next slice laid onto the
+// frame's own dome (carry.h) keeps its shape. The first try that is good is kept, else the best (fewest
+// crossings, then fewest poor triangles, then the largest share in 40–80°).
 void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options,
                  Reconstruct4DReport& rep) {
   const std::vector<int>& unfit = rep.rebuild.unfit;
@@ -146,18 +211,19 @@ void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOpti
   // One carry per source frame: its frames share the thin-plate factorisations (carry.h), and run in parallel.
   std::map<int, std::vector<int>> by_source;
   for (std::size_t k = 0; k < unfit.size(); ++k) by_source[source[k]].push_back(unfit[k]);
-  SurfaceOptions own = options.surface;
-  own.geometry_only = true;
+  const std::map<int, TriangleMesh> own = own_surfaces(seq, unfit, options.surface);
   CarryOptions retry_options = options.carry;
   retry_options.relax_rounds = std::max(retry_options.relax_rounds, kRetryRelaxRounds);
-  for (const auto& [s, targets] : by_source) {
+  for (const auto& group_of_source : by_source) {
+    const int s = group_of_source.first;
+    const std::vector<int>& targets = group_of_source.second;
     const TriangleMesh from{out.positions[static_cast<std::size_t>(s)], out.triangles};
     auto carry = [&](const std::vector<int>& to, int ends, const CarryOptions& co, CarryReport& cr) {
       Sequence group = seq;
       group.frames = {seq.frames[static_cast<std::size_t>(s)]};
       for (int t : to) group.frames.push_back(without_ends(seq, seq.frames[static_cast<std::size_t>(t)], ends));
       return carry_frames(
-          group, from, [&](std::size_t k) { return reconstruct_frame(seq, to[k - 1], own); }, co, &cr);
+          group, from, [&](std::size_t k) { return own.at(to[k - 1]); }, co, &cr);
     };
     CarryReport cr;
     const MeshSequence carried = carry(targets, 0, options.carry, cr);
@@ -167,7 +233,8 @@ void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOpti
       std::vector<Vec3> best = carried.positions[k + 1];
       CarryFrameReport best_report = cr.frames[k + 1];
       CarriedShape shape = carried_shape(TriangleMesh{best, out.triangles});
-      for (int ends = 0; ends <= 3 && !shape.good(); ++ends) {
+      for (int ends : retry_order(seq, s, targets[k])) {
+        if (shape.good()) break;
         CarryReport again;
         MeshSequence retry = carry({targets[k]}, ends, retry_options, again);
         const CarriedShape other = carried_shape(TriangleMesh{retry.positions[1], out.triangles});
