@@ -31,16 +31,20 @@ std::vector<std::string> surface_faults(const TriangleMesh& mesh, const ResultCh
   return faults;
 }
 
-// The volume comparison: a collapsed, inside-out or ballooned frame is far from its discs.
-void check_volume(FrameCheck& c, double simpson, double tolerance) {
-  c.simpson_volume = simpson;
-  if (!(simpson > 0.0)) return;
-  const double ratio = c.volume / simpson;
-  if (!(std::abs(ratio - 1.0) <= tolerance))
-    c.faults.push_back(
-        fmt::format("volume {:.1f} ml against {:.1f} ml by Simpson's discs of its contours ({:+.1f} %, "
-                    "bound ±{:.0f} %)",
-                    c.volume / 1000.0, simpson / 1000.0, 100.0 * (ratio - 1.0), 100.0 * tolerance));
+// The volume comparison: a collapsed, inside-out or ballooned frame is far from its discs. The difference is
+// weighed against the outer contours' discs (ResultCheckOptions::volume_tolerance).
+void check_volume(FrameCheck& c, const DiscVolume& discs, double tolerance) {
+  c.simpson_volume = discs.volume;
+  c.simpson_outer_volume = discs.outer_volume;
+  if (!(discs.volume > 0.0) || !(discs.outer_volume > 0.0)) return;
+  const double share = (c.volume - discs.volume) / discs.outer_volume;
+  if (std::abs(share) <= tolerance) return;
+  const bool holes = discs.outer_volume > discs.volume;
+  c.faults.push_back(fmt::format(
+      "volume {:.1f} ml against {:.1f} ml by Simpson's discs of its contours ({:+.1f} %{}, bound ±{:.0f} %)",
+      c.volume / 1000.0, discs.volume / 1000.0, 100.0 * share,
+      holes ? fmt::format(" of the {:.1f} ml its outer contours enclose", discs.outer_volume / 1000.0) : "",
+      100.0 * tolerance));
 }
 
 // Positions that cannot belong to the shared triangles, or are not numbers.
@@ -85,7 +89,7 @@ ResultCheck check_result(const MeshSequence& result, const Sequence& contours, c
     const TriangleMesh mesh = result.frame(f);
     c.faults = surface_faults(mesh, options, c.self_intersections);
     c.volume = signed_volume(mesh);
-    if (compare_volume && c.ok()) check_volume(c, discs[f].volume, options.volume_tolerance);
+    if (compare_volume && c.ok()) check_volume(c, discs[f], options.volume_tolerance);
   });
   return out;
 }

@@ -57,11 +57,11 @@ std::vector<double> thickness(const std::vector<SliceArea>& s, double fallback) 
 }
 }  // namespace
 
-double enclosed_area(const Slice& slice, Vec3 u, Vec3 v) {
+double enclosed_area(const Slice& slice, Vec3 u, Vec3 v, double* outer_area) {
   std::vector<std::vector<Vec2>> polys;
   for (const Contour& c : slice.contours)
     if (c.points.size() >= 3) polys.push_back(project(c.points, u, v));
-  double area = 0.0;
+  double area = 0.0, outer = 0.0;
   for (std::size_t i = 0; i < polys.size(); ++i) {
     // Depth: how many other contours hold this one. Contours of one slice do not cross, so one of
     // its vertices decides (its centroid would not: it may lie outside a non-convex contour).
@@ -70,7 +70,9 @@ double enclosed_area(const Slice& slice, Vec3 u, Vec3 v) {
       if (j != i && inside(polys[j], polys[i][0])) ++depth;
     const double a = std::abs(signed_area(polys[i]));
     area += depth % 2 == 0 ? a : -a;
+    if (depth % 2 == 0) outer += a;
   }
+  if (outer_area) *outer_area = outer;
   return area;
 }
 
@@ -79,8 +81,11 @@ std::vector<DiscVolume> simpson_volumes(const Sequence& seq) {
   std::vector<double> gaps;
   for (std::size_t f = 0; f < seq.frames.size(); ++f) {
     DiscVolume& d = out[f];
-    for (const Slice& s : seq.frames[f].slices)
-      d.slices.push_back({s.id, slice_offset(s, seq.normal), enclosed_area(s, seq.u, seq.v)});
+    for (const Slice& s : seq.frames[f].slices) {
+      SliceArea a{s.id, slice_offset(s, seq.normal), 0.0, 0.0};
+      a.area = enclosed_area(s, seq.u, seq.v, &a.outer_area);
+      d.slices.push_back(a);
+    }
     std::stable_sort(d.slices.begin(), d.slices.end(),
                      [](const SliceArea& a, const SliceArea& b) { return a.offset < b.offset; });
     for (std::size_t i = 1; i < d.slices.size(); ++i) gaps.push_back(d.slices[i].offset - d.slices[i - 1].offset);
@@ -92,7 +97,10 @@ std::vector<DiscVolume> simpson_volumes(const Sequence& seq) {
   }
   for (DiscVolume& d : out) {
     const std::vector<double> t = thickness(d.slices, median_gap);
-    for (std::size_t i = 0; i < d.slices.size(); ++i) d.volume += d.slices[i].area * t[i];
+    for (std::size_t i = 0; i < d.slices.size(); ++i) {
+      d.volume += d.slices[i].area * t[i];
+      d.outer_volume += d.slices[i].outer_area * t[i];
+    }
     for (std::size_t i = 1; i < d.slices.size(); ++i)
       d.trapezoid_volume +=
           0.5 * (d.slices[i].area + d.slices[i - 1].area) * (d.slices[i].offset - d.slices[i - 1].offset);

@@ -111,6 +111,7 @@ Json checks_json(const ResultCheck& check) {
                  {"ok", c.ok()},
                  {"volume_mm3", c.volume},
                  {"simpson_volume_mm3", c.simpson_volume},
+                 {"simpson_outer_volume_mm3", c.simpson_outer_volume},
                  {"crossing_triangle_pairs", c.self_intersections},
                  {"faults", c.faults}});
   return a;

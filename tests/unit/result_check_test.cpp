@@ -69,6 +69,48 @@ TEST(ResultCheck, CollapsedFrameFailsTheVolumeBound) {
   EXPECT_TRUE(check_result(c.result, Sequence{}).ok());
 }
 
+// A wall: the sphere of radius 20 with a cavity of radius `inner` (its rings reversed), and the sphere's rings as
+// outer contours with circles of the cavity radius at the same heights as holes.
+Case wall_case(double inner) {
+  const TriangleMesh outer = test::ring_sphere(20.0, kRings, kPerRing);
+  TriangleMesh cavity = test::ring_sphere(inner, kRings, kPerRing);
+  Case c;
+  c.result.triangles = outer.triangles;
+  const auto offset = static_cast<std::uint32_t>(outer.positions.size());
+  for (Triangle t : cavity.triangles) c.result.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+  std::vector<Vec3> x = outer.positions;
+  x.insert(x.end(), cavity.positions.begin(), cavity.positions.end());
+  c.result.positions = {x};
+  c.result.times_ms = {0};
+  Frame f = test::ring_contours(outer, kRings, kPerRing);
+  for (Slice& sl : f.slices) {
+    const double z = sl.contours.front().points.front().z;
+    if (std::abs(z) >= 15.0) continue;
+    Contour hole;
+    const double r = std::sqrt(15.0 * 15.0 - z * z);
+    for (int k = 0; k < kPerRing; ++k) {
+      const double a = 2 * 3.14159265358979323846 * k / kPerRing;
+      hole.points.push_back({r * std::cos(a), r * std::sin(a), z});
+    }
+    sl.contours.push_back(hole);
+  }
+  c.contours = test::z_sequence({f});
+  return c;
+}
+
+TEST(ResultCheck, AWallIsWeighedAgainstTheVolumeItsOuterContoursEnclose) {
+  // The wall between radius 15 and 20 passes; its discs subtract the holes, and the outer discs do not.
+  const ResultCheck ok = check_result(wall_case(15.0).result, wall_case(15.0).contours);
+  EXPECT_TRUE(ok.ok()) << ok.summary();
+  ASSERT_EQ(ok.frames.size(), 1u);
+  EXPECT_GT(ok.frames[0].simpson_outer_volume, 1.5 * ok.frames[0].simpson_volume);
+  // A wall that collapsed (its cavity grown to radius 19.5, a tenth of the wall left) is far out and named.
+  const Case collapsed = wall_case(19.5);
+  const ResultCheck r = check_result(collapsed.result, collapsed.contours);
+  EXPECT_FALSE(r.ok());
+  EXPECT_TRUE(mentions(r.frames[0], "its outer contours enclose")) << r.summary();
+}
+
 TEST(ResultCheck, HoleIsAFaultUnlessEndsAreOpen) {
   Case c = sphere_case();
   c.result.triangles.pop_back();
