@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <tuple>
 
 #include <tbb/parallel_for.h>
@@ -80,16 +81,24 @@ MeshSequence carry_4d(const Sequence& seq, const Reconstruct4DOptions& options, 
   return out;
 }
 
-// Frame `f` with the contours of its first, last or both end slices (along the stack) left out: `ends` 1, 2 or 3.
-Frame without_ends(const Sequence& seq, const Frame& f, int ends) {
+// The indices in `f.slices` of its lowest and highest slice with contours along the stack; none when fewer than
+// three slices have contours (then no end is left out).
+std::optional<std::array<std::size_t, 2>> end_slices(const Sequence& seq, const Frame& f) {
   std::vector<std::pair<double, std::size_t>> order;
   for (std::size_t k = 0; k < f.slices.size(); ++k)
     if (!f.slices[k].contours.empty()) order.emplace_back(dot(slice_plane(seq, f.slices[k]).origin, seq.normal), k);
+  if (order.size() < 3) return std::nullopt;
   std::sort(order.begin(), order.end());
+  return std::array<std::size_t, 2>{order.front().second, order.back().second};
+}
+
+// Frame `f` with the contours of its first, last or both end slices (along the stack) left out: `ends` 1, 2 or 3.
+Frame without_ends(const Sequence& seq, const Frame& f, int ends) {
   Frame out = f;
-  if (order.size() < 3) return out;
-  if (ends & 1) out.slices[order.front().second].contours.clear();
-  if (ends & 2) out.slices[order.back().second].contours.clear();
+  const auto e = end_slices(seq, f);
+  if (!e) return out;
+  if (ends & 1) out.slices[(*e)[0]].contours.clear();
+  if (ends & 2) out.slices[(*e)[1]].contours.clear();
   return out;
 }
 
@@ -124,25 +133,21 @@ CarriedShape carried_shape(const TriangleMesh& m) {
 // where s has no contour on that slice).
 std::array<double, 2> end_changes(const Sequence& seq, int s, int t) {
   const Frame& to = seq.frames[static_cast<std::size_t>(t)];
-  std::vector<std::pair<double, const Slice*>> order;
-  for (const Slice& sl : to.slices)
-    if (!sl.contours.empty()) order.emplace_back(dot(slice_plane(seq, sl).origin, seq.normal), &sl);
-  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::array<double, 2> change{0.0, 0.0};
-  if (order.size() < 3) return change;
+  const auto ends = end_slices(seq, to);
+  if (!ends) return change;
   auto length = [](const Slice& sl) {
     double l = 0.0;
     for (const Contour& c : sl.contours) l += perimeter(c.points);
     return l;
   };
-  for (int e = 0; e < 2; ++e) {
-    const Slice& end = *(e == 0 ? order.front().second : order.back().second);
+  for (std::size_t e = 0; e < 2; ++e) {
+    const Slice& end = to.slices[(*ends)[e]];
     double from = 0.0;
     for (const Slice& sl : seq.frames[static_cast<std::size_t>(s)].slices)
       if (sl.id == end.id) from = length(sl);
     const double now = length(end);
-    change[static_cast<std::size_t>(e)] =
-        from > 0.0 && now > 0.0 ? std::abs(std::log(now / from)) : std::numeric_limits<double>::infinity();
+    change[e] = from > 0.0 && now > 0.0 ? std::abs(std::log(now / from)) : std::numeric_limits<double>::infinity();
   }
   return change;
 }

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "contour4d/surface/angle_repair.h"
@@ -251,6 +252,20 @@ void flip(std::vector<Triangle>& tris, OwnerTable& o, std::size_t t1, std::size_
     for (int k = 0; k < 3; ++k) set_owner(o, tris[t][k], tris[t][(k + 1) % 3], t);
 }
 
+// The smallest angle of the pair (a, b, c), (b, a, d) and of the flipped pair (c, a, d), (c, d, b).
+std::pair<double, double> pair_min_angles(const std::vector<Vec3>& x, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                                          std::uint32_t d) {
+  return {std::min(min_angle_deg(x[a], x[b], x[c]), min_angle_deg(x[b], x[a], x[d])),
+          std::min(min_angle_deg(x[c], x[a], x[d]), min_angle_deg(x[c], x[d], x[b]))};
+}
+
+// Whether the flipped triangles (c, a, d) and (c, d, b) both face along `n` (no fold).
+bool flipped_pair_faces(const std::vector<Vec3>& x, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
+                        Vec3 n) {
+  const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
+  return !(dot(m1, n) <= 0 || dot(m2, n) <= 0);
+}
+
 // Whether edge a-b between triangles (a, b, c) and (b, a, d) is flipped into (c, a, d), (c, d, b):
 // not Delaunay, the new edge c-d not there yet, the pair nearly coplanar (or one near-flat) and no fold.
 bool wants_flip(const OwnerTable& o, const std::vector<Vec3>& x, std::uint32_t a, std::uint32_t b, std::uint32_t c,
@@ -261,8 +276,7 @@ bool wants_flip(const OwnerTable& o, const std::vector<Vec3>& x, std::uint32_t a
   if (c == d || owner_of(o, c, d) != kNone || owner_of(o, d, c) != kNone) return false;
   if (angle_at(x[c], x[a], x[b]) + angle_at(x[d], x[b], x[a]) <= std::numbers::pi + 1e-9) return false;
   if (options.only_below_deg > 0) {
-    const double before = std::min(min_angle_deg(x[a], x[b], x[c]), min_angle_deg(x[b], x[a], x[d]));
-    const double after = std::min(min_angle_deg(x[c], x[a], x[d]), min_angle_deg(x[c], x[d], x[b]));
+    const auto [before, after] = pair_min_angles(x, a, b, c, d);
     if (before >= options.only_below_deg || after <= before) return false;
   }
   const Vec3 n1 = cross(x[b] - x[a], x[c] - x[a]), n2 = cross(x[a] - x[b], x[d] - x[b]);
@@ -275,8 +289,7 @@ bool wants_flip(const OwnerTable& o, const std::vector<Vec3>& x, std::uint32_t a
   if (flat1 && flat2) return false;
   const Vec3 n = flat1 ? n2 / l2 : flat2 ? n1 / l1 : n1 / l1 + n2 / l2;
   // New triangles (c,a,d) and (c,d,b) must face the same way as the pair did (no fold).
-  const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
-  return !(dot(m1, n) <= 0 || dot(m2, n) <= 0);
+  return flipped_pair_faces(x, a, b, c, d, n);
 }
 
 // One round over every edge in sorted order, flipping where wanted; returns the number of flips.
@@ -328,10 +341,8 @@ bool wants_ear_flip(const OwnerTable& o, const std::vector<Vec3>& x, const std::
   const double l1 = norm(n1), l2 = norm(n2);
   if (!(l2 > 0.0)) return false;
   const Vec3 n = l1 > 0.02 * dot(x[b] - x[a], x[b] - x[a]) ? n1 / l1 + n2 / l2 : n2 / l2;
-  const Vec3 m1 = cross(x[a] - x[c], x[d] - x[c]), m2 = cross(x[d] - x[c], x[b] - x[c]);
-  if (dot(m1, n) <= 0 || dot(m2, n) <= 0) return false;
-  const double before = std::min(min_angle_deg(x[a], x[b], x[c]), min_angle_deg(x[b], x[a], x[d]));
-  const double after = std::min(min_angle_deg(x[c], x[a], x[d]), min_angle_deg(x[c], x[d], x[b]));
+  if (!flipped_pair_faces(x, a, b, c, d, n)) return false;
+  const auto [before, after] = pair_min_angles(x, a, b, c, d);
   return after >= kEarFloorDeg || after > before;
 }
 
