@@ -129,6 +129,8 @@ std::string report_json(const ExportInput& in, const ExportRun& run, const Expor
                     {"opened", open},
                     {"face", open ? h.surface.names[k + 1] : e.name},
                     {"border_moved_to_plane_mm", open ? h.surface.ring_moved_mm[k] : 0.0},
+                    {"band_moved_mm", open ? h.surface.band_moved_mm[k] : 0.0},
+                    {"band_vertices", open ? Json(h.surface.band[k]) : Json::array()},
                     {"frames_not_flat", open ? Json(h.surface.not_flat_frames[k]) : Json::array()}});
   }
   Json steps = Json::array();

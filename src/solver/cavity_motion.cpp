@@ -26,10 +26,7 @@
 namespace c4d {
 namespace {
 
-constexpr double kStiffening = 2.0;     // Jacobian-based stiffening exponent χ of the fallback (Tezduyar's 0…2)
-constexpr int kRepairSweeps = 8;        // sweeps of the local repair over the nodes of inverted or flat tets
-constexpr double kRepairAspect = 20.0;  // a tet flatter than this aspect ratio (about 3° dihedral) is repaired
-constexpr int kLiftIterations = 40;     // steps of one node's lift into its star's kernel
+constexpr double kStiffening = 2.0;  // Jacobian-based stiffening exponent χ of the fallback (Tezduyar's 0…2)
 
 struct System {
   Eigen::SparseMatrix<double> inner;     // inner × inner, lower triangle
@@ -132,57 +129,34 @@ std::vector<std::vector<Vec3>> extend(const TetMesh& mesh, const MeshSequence& s
   return out;
 }
 
-// Signed distance of node k of tet q to the plane of its opposite face (positive on the tet's side), and the
-// unit direction that increases it.
-double height(const std::vector<Vec3>& x, const Tet& q, int k, Vec3& up) {
-  const Vec3 &a = x[q[0]], &b = x[q[1]], &c = x[q[2]], &d = x[q[3]];
-  const Vec3 n[4] = {cross(c - b, d - b), cross(d - a, c - a), cross(b - a, d - a), cross(c - a, b - a)};
-  const double len = norm(n[k]);
-  if (!(len > 0.0)) {
-    up = Vec3{};
-    return 0.0;
+// Runs body(i) for i in [0, count) on `threads` workers (0: all cores).
+template <class Body>
+void for_each_index(std::size_t count, int threads, const Body& body) {
+  auto range_body = [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) body(i);
+  };
+  if (threads > 0) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), range_body); });
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), range_body);
   }
-  up = (-1.0 / len) * n[k];
-  return 6.0 * tet_volume(a, b, c, d) / len;
 }
 
-// Moves inner node v towards the deepest point of the kernel of its star: a few steps along the inward normal of
-// the face it is lowest above, halving the step when that does not raise the lowest height.
-void lift_node(std::vector<Vec3>& x, const std::vector<Tet>& tets, const std::uint32_t* star, std::size_t count,
-               std::uint32_t v) {
-  auto lowest = [&](Vec3& up) {
-    double h = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < count; ++i) {
-      const Tet& q = tets[star[i]];
-      const int k = static_cast<int>(std::find(q.begin(), q.end(), v) - q.begin());
-      Vec3 dir;
-      const double hk = height(x, q, k, dir);
-      if (hk < h) {
-        h = hk;
-        up = dir;
-      }
-    }
-    return h;
-  };
-  double edge = 0.0;
-  for (std::size_t i = 0; i < count; ++i)
-    for (std::uint32_t u : tets[star[i]]) edge = std::max(edge, norm(x[u] - x[v]));
-  double step = 0.25 * edge;
-  Vec3 up;
-  double h = lowest(up);
-  for (int it = 0; it < kLiftIterations && step > 1e-9 * edge; ++it) {
-    const Vec3 old = x[v];
-    x[v] = old + step * up;
-    Vec3 up2;
-    const double h2 = lowest(up2);
-    if (h2 > h) {
-      h = h2;
-      up = up2;
-    } else {
-      x[v] = old;
-      step *= 0.5;
-    }
-  }
+// Each key frame's cavity untangled (its inner displacement updated); the nodes moved per frame.
+std::vector<std::size_t> untangle_key_frames(const TetMesh& mesh, const MeshSequence& surface, CavityMotion& m,
+                                             int threads) {
+  const std::size_t nb = mesh.surface_nodes;
+  std::vector<std::size_t> moved(surface.positions.size(), 0);
+  for_each_index(surface.positions.size(), threads, [&](std::size_t f) {
+    std::vector<Vec3>& inner = m.inner_displacement[f];
+    std::vector<Vec3> x = surface.positions[f];
+    x.resize(mesh.nodes.size());
+    for (std::size_t i = 0; i < inner.size(); ++i) x[nb + i] = mesh.nodes[nb + i] + inner[i];
+    moved[f] = untangle_tets(x, mesh.nodes, mesh.tets, nb, m.stars);
+    for (std::size_t i = 0; i < inner.size(); ++i) inner[i] = x[nb + i] - mesh.nodes[nb + i];
+  });
+  return moved;
 }
 
 std::vector<TetQuality> measure_steps(const TetMesh& mesh, const MeshSequence& surface, const CavityMotion& motion,
@@ -190,20 +164,12 @@ std::vector<TetQuality> measure_steps(const TetMesh& mesh, const MeshSequence& s
                                       std::vector<std::size_t>& repaired) {
   std::vector<TetQuality> steps(times_s.size());
   repaired.assign(times_s.size(), 0);
-  auto body = [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      std::size_t moved = 0;
-      steps[i] =
-          measure_tets(cavity_nodes_at(mesh, surface, motion, step_weights(surface, times_s[i]), &moved), mesh.tets);
-      repaired[i] = moved;
-    }
-  };
-  if (threads > 0) {
-    tbb::task_arena arena(threads);
-    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, times_s.size()), body); });
-  } else {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, times_s.size()), body);
-  }
+  for_each_index(times_s.size(), threads, [&](std::size_t i) {
+    std::size_t moved = 0;
+    steps[i] =
+        measure_tets(cavity_nodes_at(mesh, surface, motion, step_weights(surface, times_s[i]), &moved), mesh.tets);
+    repaired[i] = moved;
+  });
   return steps;
 }
 
@@ -223,22 +189,8 @@ std::vector<Vec3> cavity_nodes_at(const TetMesh& mesh, const MeshSequence& surfa
   nodes.resize(mesh.nodes.size());
   for (std::size_t i = 0; i < inner.size(); ++i)
     nodes[mesh.surface_nodes + i] = mesh.nodes[mesh.surface_nodes + i] + inner[i];
-  // Local repair: the inner nodes of inverted tets lifted into their stars' kernels, sweep after sweep.
-  std::set<std::uint32_t> moved;
-  for (int sweep = 0; sweep < kRepairSweeps; ++sweep) {
-    std::set<std::uint32_t> lift;
-    for (const Tet& q : mesh.tets)
-      if (!(tet_aspect_ratio(nodes[q[0]], nodes[q[1]], nodes[q[2]], nodes[q[3]]) <= kRepairAspect))
-        for (std::uint32_t v : q)
-          if (v >= mesh.surface_nodes) lift.insert(v);
-    if (lift.empty()) break;
-    for (std::uint32_t v : lift) {
-      const std::uint32_t b = motion.star_offsets[v], e = motion.star_offsets[v + 1];
-      lift_node(nodes, mesh.tets, motion.stars.data() + b, e - b, v);
-      moved.insert(v);
-    }
-  }
-  if (repaired) *repaired = moved.size();
+  const std::size_t moved = untangle_tets(nodes, mesh.nodes, mesh.tets, mesh.surface_nodes, motion.stars);
+  if (repaired) *repaired = moved;
   return nodes;
 }
 
@@ -246,20 +198,13 @@ CavityMotion cavity_motion(const TetMesh& mesh, const MeshSequence& surface, con
                            const CavityMotionOptions& options) {
   CavityMotion m;
   m.frame0 = measure_tets(mesh.nodes, mesh.tets);
-  // Each node's tets (compressed rows), for the local repair.
-  m.star_offsets.assign(mesh.nodes.size() + 1, 0);
-  for (const Tet& q : mesh.tets)
-    for (std::uint32_t v : q) ++m.star_offsets[v + 1];
-  for (std::size_t v = 0; v < mesh.nodes.size(); ++v) m.star_offsets[v + 1] += m.star_offsets[v];
-  m.stars.resize(m.star_offsets.back());
-  std::vector<std::uint32_t> fill(m.star_offsets.begin(), m.star_offsets.end() - 1);
-  for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
-    for (std::uint32_t v : mesh.tets[t]) m.stars[fill[v]++] = t;
+  m.stars = node_stars(mesh.nodes.size(), mesh.tets);
   std::string faults;
   for (Extension extension : {Extension::Harmonic, Extension::Stiffened}) {
     m.extension = extension;
     try {
       m.inner_displacement = extend(mesh, surface, extension);
+      m.untangled_key_nodes = untangle_key_frames(mesh, surface, m, options.threads);
     } catch (const SolverError& e) {
       if (extension == Extension::Harmonic || e.code() != ErrorCode::InvertedElement) throw;
       throw SolverError(ErrorCode::InvertedElement, {},

@@ -21,6 +21,7 @@
 
 #include "contour4d/core/errors.h"
 #include "contour4d/core/sparse_solve.h"
+#include "contour4d/metrics/topology.h"
 
 namespace c4d {
 namespace {
@@ -306,12 +307,158 @@ std::vector<int> choose_ends(const std::vector<SurfaceEnd>& ends, const std::str
 
 namespace {
 
+// Factorises deg(i) y_i − Σ_{j in the set} y_j for the vertices of a set (`local[v]` their index in it, −1 for
+// others): the uniform graph Laplacian with the rest held fixed (lower triangle).
+bool factor_uniform_laplacian(SparseLdlt& ldlt, const std::vector<std::vector<std::uint32_t>>& rings,
+                              const std::vector<std::uint32_t>& vertices, const std::vector<int>& local) {
+  const int n = static_cast<int>(vertices.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n; ++i) {
+    const auto& ring = rings[vertices[static_cast<std::size_t>(i)]];
+    entries.emplace_back(i, i, static_cast<double>(ring.size()));
+    for (std::uint32_t j : ring)
+      if (local[j] >= 0 && local[j] < i) entries.emplace_back(i, local[j], -1.0);
+  }
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  return factor_lower(ldlt, a);
+}
+
+// The wall vertices between an end's border and the next slice plane (frame 0): reached from the border without
+// passing the cap or a vertex on a slice plane. Sorted.
+std::vector<std::uint32_t> basal_band(const MeshSequence& seq, const Vec3& normal, const SurfaceEnd& end,
+                                      const std::vector<std::vector<std::uint32_t>>& rings) {
+  const std::vector<Vec3>& x0 = seq.positions.front();
+  std::vector<double> s(x0.size());
+  for (std::size_t v = 0; v < x0.size(); ++v) s[v] = dot(normal, x0[v]);
+  const std::vector<double> planes = slice_planes(s);
+  std::vector<char> seen(x0.size(), 0);
+  for (std::uint32_t v : end.border) seen[v] = 1;
+  for (std::uint32_t v : end.inner) seen[v] = 1;
+  std::vector<std::uint32_t> band, stack(end.border.begin(), end.border.end());
+  while (!stack.empty()) {
+    const std::uint32_t v = stack.back();
+    stack.pop_back();
+    for (std::uint32_t u : rings[v]) {
+      if (seen[u]) continue;
+      seen[u] = 1;
+      if (plane_of(planes, s[u]) >= 0) continue;
+      band.push_back(u);
+      stack.push_back(u);
+    }
+  }
+  std::sort(band.begin(), band.end());
+  return band;
+}
+
+// Lays the border of `end` on each frame's plane (the mean offset of the border there) and moves the wall band
+// beyond it (basal_band) along the normal by the harmonic extension of the border's moves (uniform weights,
+// zero at the next contour): the border's spread over the plane is taken up by the whole band, not by its first
+// row of triangles. One factorisation for every frame.
+void lay_border_on_planes(MeshSequence& out, const Vec3& normal, const SurfaceEnd& end,
+                          const std::vector<std::uint32_t>& band, const std::vector<std::vector<std::uint32_t>>& rings,
+                          std::vector<double>& offsets) {
+  const std::size_t nv = out.positions.front().size(), frames = out.positions.size();
+  std::vector<double> shift(nv, 0.0);  // per vertex, in the current frame: the border's move along the normal
+  std::vector<int> local(nv, -1);
+  for (std::size_t i = 0; i < band.size(); ++i) local[band[i]] = static_cast<int>(i);
+  const int n = static_cast<int>(band.size());
+  SparseLdlt ldlt;
+  if (n > 0 && !factor_uniform_laplacian(ldlt, rings, band, local))
+    throw SolverError(ErrorCode::Internal, {}, "the wall band's system is singular");
+  std::vector<double> b(static_cast<std::size_t>(n)), y(b.size());
+  for (std::size_t f = 0; f < frames; ++f) {
+    std::vector<Vec3>& x = out.positions[f];
+    double d = 0.0;
+    for (std::uint32_t v : end.border) d += dot(normal, x[v]);
+    d /= static_cast<double>(end.border.size());
+    offsets.push_back(d);
+    for (std::uint32_t v : end.border) {
+      shift[v] = d - dot(normal, x[v]);
+      x[v] = x[v] + shift[v] * normal;
+    }
+    if (n == 0) continue;
+    for (int i = 0; i < n; ++i) {
+      b[static_cast<std::size_t>(i)] = 0.0;
+      for (std::uint32_t j : rings[band[static_cast<std::size_t>(i)]])
+        if (local[j] < 0) b[static_cast<std::size_t>(i)] += shift[j];
+    }
+    ldlt.solve(b.data(), y.data(), 1);
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t v = band[static_cast<std::size_t>(i)];
+      x[v] = x[v] + y[static_cast<std::size_t>(i)] * normal;
+    }
+    for (std::uint32_t v : end.border) shift[v] = 0.0;
+  }
+}
+
+// Twice the area of triangle `tri` facing along side · normal (negative: folded).
+double facing(const std::vector<Vec3>& x, const Triangle& tri, int side, const Vec3& normal) {
+  return side * dot(cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]), normal);
+}
+
+// Moves the inner vertices of a flat face's folded triangles within its plane until none folds (a few sweeps):
+// each steps to where the smallest of its triangles grows (along normal × the opposite edge), the step halved
+// when that does not raise it. The planar counterpart of lifting a node into the kernel of its star; a
+// border with small dents (pixel steps) folds Tutte's embedding at a few triangles only.
+void unfold_face(std::vector<Vec3>& x, const std::vector<Triangle>& triangles, const SurfaceEnd& end,
+                 const Vec3& normal, const std::vector<std::vector<std::uint32_t>>& faces_of) {
+  constexpr int kSweeps = 20, kSteps = 40;
+  auto lowest = [&](std::uint32_t v, Vec3& up) {
+    double low = HUGE_VAL;
+    for (std::uint32_t t : faces_of[v]) {
+      const Triangle& tri = triangles[t];
+      const double a = facing(x, tri, end.side, normal);
+      if (a < low) {
+        const int k = static_cast<int>(std::find(tri.begin(), tri.end(), v) - tri.begin());
+        low = a;
+        up = static_cast<double>(end.side) * cross(normal, x[tri[(k + 2) % 3]] - x[tri[(k + 1) % 3]]);
+      }
+    }
+    return low;
+  };
+  for (int sweep = 0; sweep < kSweeps; ++sweep) {
+    bool folded = false;
+    for (std::uint32_t v : end.inner) {
+      Vec3 up;
+      double low = lowest(v, up);
+      if (low > 0.0) continue;
+      folded = true;
+      double edge = 0.0;
+      for (std::uint32_t t : faces_of[v])
+        for (std::uint32_t u : triangles[t]) edge = std::max(edge, norm(x[u] - x[v]));
+      double step = 0.25 * edge;
+      for (int it = 0; it < kSteps && step > 1e-9 * edge && norm(up) > 0.0; ++it) {
+        const Vec3 old = x[v];
+        x[v] = old + (step / norm(up)) * up;
+        Vec3 up2;
+        const double low2 = lowest(v, up2);
+        if (low2 > low) {
+          low = low2;
+          up = up2;
+        } else {
+          x[v] = old;
+          step *= 0.5;
+        }
+      }
+    }
+    if (!folded) return;
+  }
+}
+
+// True when a triangle flagged in `only` crosses another in frame `f` of `seq`.
+bool crosses(const MeshSequence& seq, std::size_t f, const std::vector<char>& only) {
+  return count_self_intersections_of({seq.positions[f], seq.triangles}, only) > 0;
+}
+
 // Flattens one end in every frame of `out` (a copy of the input sequence).
 void flatten_end(MeshSequence& out, const Vec3& normal, const SurfaceEnd& end, const std::string& name,
-                 double& ring_moved, std::vector<double>& offsets, std::vector<int>& not_flat) {
+                 const std::vector<std::vector<std::uint32_t>>& rings, const std::vector<std::uint32_t>& band,
+                 double& ring_moved, double& band_moved, std::vector<double>& offsets, std::vector<int>& not_flat) {
   const std::size_t nv = out.positions.front().size(), frames = out.positions.size();
-  std::vector<std::uint32_t> part = end.border;  // the end's vertices, to restore a frame whose flat face folds
+  std::vector<std::uint32_t> part = end.border;  // the vertices moved, to restore a frame whose flat face fails
   part.insert(part.end(), end.inner.begin(), end.inner.end());
+  part.insert(part.end(), band.begin(), band.end());
   std::vector<std::vector<Vec3>> before(frames);
   for (std::size_t f = 0; f < frames; ++f)
     for (std::uint32_t v : part) before[f].push_back(out.positions[f][v]);
@@ -319,30 +466,12 @@ void flatten_end(MeshSequence& out, const Vec3& normal, const SurfaceEnd& end, c
   for (std::size_t i = 0; i < end.inner.size(); ++i) local[end.inner[i]] = static_cast<int>(i);
   std::vector<char> on_border(nv, 0);
   for (std::uint32_t v : end.border) on_border[v] = 1;
-  const auto rings = vertex_neighbours(nv, out.triangles);
-  // Border on each frame's plane (the mean offset of the border there).
-  for (std::size_t f = 0; f < frames; ++f) {
-    std::vector<Vec3>& x = out.positions[f];
-    double d = 0.0;
-    for (std::uint32_t v : end.border) d += dot(normal, x[v]);
-    d /= static_cast<double>(end.border.size());
-    offsets.push_back(d);
-    for (std::uint32_t v : end.border) x[v] = x[v] - (dot(normal, x[v]) - d) * normal;
-  }
+  lay_border_on_planes(out, normal, end, band, rings, offsets);
   const int n = static_cast<int>(end.inner.size());
   if (n > 0) {
     // Tutte: deg(i) x_i − Σ_inner x_j = Σ_border x_j, one factorisation, 3 columns per frame.
-    std::vector<Eigen::Triplet<double>> entries;
-    for (int i = 0; i < n; ++i) {
-      const auto& ring = rings[end.inner[static_cast<std::size_t>(i)]];
-      entries.emplace_back(i, i, static_cast<double>(ring.size()));
-      for (std::uint32_t j : ring)
-        if (local[j] >= 0 && local[j] < i) entries.emplace_back(i, local[j], -1.0);
-    }
-    Eigen::SparseMatrix<double> A(n, n);
-    A.setFromTriplets(entries.begin(), entries.end());
     SparseLdlt ldlt;
-    if (!factor_lower(ldlt, A))
+    if (!factor_uniform_laplacian(ldlt, rings, end.inner, local))
       throw SolverError(ErrorCode::Internal, {}, fmt::format("end '{}': the flat-face system is singular", name));
     const int columns = static_cast<int>(3 * frames);
     std::vector<double> b(static_cast<std::size_t>(n) * static_cast<std::size_t>(columns), 0.0), x(b.size());
@@ -365,22 +494,31 @@ void flatten_end(MeshSequence& out, const Vec3& normal, const SurfaceEnd& end, c
         out.positions[f][end.inner[row]] = p;
       }
   }
-  // A flat face must not fold: every triangle faces out of the cavity, along side · normal. Where it would (the
-  // frame-0 border far from one plane in that frame: a base that moved to another slice), the frame keeps the
-  // end as reconstructed, still a face of its own.
+  // A flat face must not fold: every triangle faces out of the cavity, along side · normal; nor may it or the
+  // moved band cross the wall. Where it would (the frame-0 border far from one plane in that frame: a base that
+  // moved to another slice), the frame keeps the end and the band as reconstructed, the end a face of its own.
+  std::vector<char> moved(nv, 0), moved_triangles(out.triangles.size(), 0);
+  for (std::uint32_t v : part) moved[v] = 1;
+  for (std::size_t t = 0; t < out.triangles.size(); ++t)
+    for (std::uint32_t v : out.triangles[t]) moved_triangles[t] = moved_triangles[t] || moved[v];
+  std::vector<std::vector<std::uint32_t>> faces_of(nv);
+  for (std::uint32_t t : end.triangles)
+    for (std::uint32_t v : out.triangles[t]) faces_of[v].push_back(t);
   for (std::size_t f = 0; f < frames; ++f) {
+    unfold_face(out.positions[f], out.triangles, end, normal, faces_of);
     const std::vector<Vec3>& x = out.positions[f];
     const bool folds = std::any_of(end.triangles.begin(), end.triangles.end(), [&](std::uint32_t t) {
-      const Triangle& tri = out.triangles[t];
-      return end.side * dot(cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]), normal) <= 0.0;
+      return facing(x, out.triangles[t], end.side, normal) <= 0.0;
     });
-    if (folds) {
+    if (folds || crosses(out, f, moved_triangles)) {
       for (std::size_t i = 0; i < part.size(); ++i) out.positions[f][part[i]] = before[f][i];
       not_flat.push_back(static_cast<int>(f));
       continue;
     }
     for (std::size_t i = 0; i < end.border.size(); ++i)
       ring_moved = std::max(ring_moved, norm(out.positions[f][part[i]] - before[f][i]));
+    for (std::size_t i = part.size() - band.size(); i < part.size(); ++i)
+      band_moved = std::max(band_moved, norm(out.positions[f][part[i]] - before[f][i]));
   }
   if (not_flat.size() == frames)
     throw InvalidInput(ErrorCode::InvertedElement, {},
@@ -398,6 +536,7 @@ FacedSequence open_ends(const MeshSequence& seq, const Vec3& normal, const std::
   r.seq = seq;
   r.face.assign(seq.triangles.size(), 0);
   r.names = {"wall"};
+  const auto rings = vertex_neighbours(seq.positions.front().size(), seq.triangles);
   if (open.size() > 250)
     throw InvalidInput(ErrorCode::Usage, {}, fmt::format("{} ends to open: at most 250 faces", open.size()));
   for (std::size_t k = 0; k < open.size(); ++k) {
@@ -410,10 +549,13 @@ FacedSequence open_ends(const MeshSequence& seq, const Vec3& normal, const std::
                          "give distinct names without spaces or slashes (--names base or --names inlet,outlet)");
     r.names.push_back(name);
     for (std::uint32_t t : end.triangles) r.face[t] = static_cast<std::uint8_t>(k + 1);
-    double moved = 0.0;
+    double moved = 0.0, band_moved = 0.0;
     r.not_flat_frames.emplace_back();
-    flatten_end(r.seq, normal, end, name, moved, r.plane_offset_mm, r.not_flat_frames.back());
+    r.band.push_back(basal_band(r.seq, normal, end, rings));
+    flatten_end(r.seq, normal, end, name, rings, r.band.back(), moved, band_moved, r.plane_offset_mm,
+                r.not_flat_frames.back());
     r.ring_moved_mm.push_back(moved);
+    r.band_moved_mm.push_back(band_moved);
   }
   return r;
 }

@@ -62,8 +62,12 @@ def face_ids(exportdir):
 
 
 def wall_only_vertices(exportdir, nverts):
-    """Vertices on no opened end (their positions are the reconstruction's, untouched by the flattening)."""
+    """Vertices on no opened end and off its band (export.json's ends[].band_vertices: the wall that takes up the
+    border's move onto the plane): their positions are the reconstruction's, untouched by the flattening."""
     faces, conn = face_ids(exportdir)
     on_end = np.zeros(nverts, bool)
     on_end[conn[faces > 0].ravel()] = True
+    with open(os.path.join(exportdir, "export.json")) as f:
+        for end in json.load(f)["ends"]:
+            on_end[np.asarray(end.get("band_vertices", []), dtype=int)] = True
     return np.where(~on_end)[0]

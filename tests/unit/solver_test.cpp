@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "contour4d/core/errors.h"
 #include "contour4d/metrics/tet_quality.h"
 #include "contour4d/solver/cavity_mesh.h"
 #include "contour4d/solver/cavity_motion.h"
+#include "contour4d/solver/tet_untangle.h"
 #include "contour4d/solver/time_steps.h"
 #include "contour4d/temporal/interpolate.h"
 #include "contour4d/temporal/sequence.h"
@@ -121,6 +123,51 @@ TEST_F(Cavity, MovesWithTheWallWithoutInvertingAndKeepsItsVolume) {
   const auto nodes = cavity_nodes_at(*mesh_, *seq_, m, step_weights(*seq_, 0.3));
   for (std::size_t v = 0; v < mesh_->surface_nodes; ++v) EXPECT_EQ(nodes[v].x, seq_->positions[3][v].x);
   EXPECT_GT(m.min_dihedral_deg, 1.0);
+}
+
+// A family of tangles: the wall of a random key frame, the inner nodes in a ball of 3 mean edge lengths around a
+// random node kicked by up to 0.9 edge lengths per axis (seeded), so that tens of tets invert. Untangling against frame 0's shapes leaves none
+// inverted, moves only inner nodes, and gives the same bits when run twice.
+TEST_F(Cavity, RandomTanglesAreUntangled) {
+  const TetMesh& m = *mesh_;
+  const NodeStars stars = node_stars(m.nodes.size(), m.tets);
+  for (unsigned seed = 0; seed < 6; ++seed) {
+    std::mt19937 rng(seed);
+    const std::size_t frame = 1 + rng() % (seq_->positions.size() - 1);
+    std::vector<Vec3> x = seq_->positions[frame];
+    x.insert(x.end(), m.nodes.begin() + static_cast<std::ptrdiff_t>(m.surface_nodes), m.nodes.end());
+    double edge = 0.0;  // the mean edge length of the tets
+    for (const Tet& q : m.tets) edge += norm(m.nodes[q[1]] - m.nodes[q[0]]) / static_cast<double>(m.tets.size());
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const Vec3 centre = x[m.surface_nodes + rng() % (m.nodes.size() - m.surface_nodes)];
+    for (std::size_t v = m.surface_nodes; v < x.size(); ++v)
+      if (norm(x[v] - centre) < 3.0 * edge) x[v] = x[v] + 0.9 * edge * Vec3{u(rng), u(rng), u(rng)};
+    ASSERT_GT(measure_tets(x, m.tets).inverted, 3u) << "seed " << seed;
+    std::vector<Vec3> again = x;
+    EXPECT_GT(untangle_tets(x, m.nodes, m.tets, m.surface_nodes, stars), 0u);
+    EXPECT_EQ(measure_tets(x, m.tets).inverted, 0u) << "seed " << seed;
+    for (std::size_t v = 0; v < m.surface_nodes; ++v) EXPECT_EQ(x[v].x, seq_->positions[frame][v].x);
+    untangle_tets(again, m.nodes, m.tets, m.surface_nodes, stars);
+    for (std::size_t v = 0; v < x.size(); ++v) ASSERT_EQ(x[v].x, again[v].x);
+  }
+}
+
+// A wall turned inside out (a frame mirrored through its centre) cannot hold a valid cavity: the motion throws
+// InvertedElement, naming the time and both extensions, instead of returning folded tets.
+TEST_F(Cavity, AWallTurnedInsideOutIsRefused) {
+  MeshSequence seq = *seq_;
+  Vec3 c;
+  for (const Vec3& p : seq.positions[2]) c += p;
+  c = (1.0 / static_cast<double>(seq.positions[2].size())) * c;
+  for (Vec3& p : seq.positions[2]) p = c + Vec3{-(p - c).x, (p - c).y, (p - c).z};
+  try {
+    cavity_motion(*mesh_, seq, make_time_steps(1.0, {10, 0.0, 1}).times_s, {2});
+    FAIL() << "no throw";
+  } catch (const SolverError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvertedElement);
+    EXPECT_NE(std::string(e.what()).find("harmonic extension"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("stiffened extension"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(Cavity, ThreadCountDoesNotChangeABit) {

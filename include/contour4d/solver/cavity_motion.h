@@ -11,6 +11,7 @@
 #include "contour4d/core/mesh.h"
 #include "contour4d/core/tet_mesh.h"
 #include "contour4d/metrics/tet_quality.h"
+#include "contour4d/solver/tet_untangle.h"
 #include "contour4d/temporal/interpolate.h"
 
 namespace c4d {
@@ -33,30 +34,32 @@ struct CavityMotion {
   std::vector<std::vector<Vec3>> inner_displacement;  //!< per key frame, per inner node (node − surface_nodes) (mm)
   std::vector<TetQuality> steps;                      //!< per output time
   std::vector<std::size_t> repaired_nodes;            //!< per output time: inner nodes moved by the local repair
-  std::vector<std::uint32_t> star_offsets;            //!< each node's tets: stars[star_offsets[v] .. star_offsets[v+1])
-  std::vector<std::uint32_t> stars;
-  TetQuality frame0;                //!< the mesh as made (frame 0)
-  double min_dihedral_deg = 180.0;  //!< over every step
-  double max_aspect_ratio = 0.0;    //!< over every step
-  double min_volume_mm3 = 0.0;      //!< the smallest tet volume over every step
+  std::vector<std::size_t> untangled_key_nodes;       //!< per key frame: inner nodes moved by untangle_tets
+  NodeStars stars;                                    //!< each node's tets, for the repairs
+  TetQuality frame0;                                  //!< the mesh as made (frame 0)
+  double min_dihedral_deg = 180.0;                    //!< over every step
+  double max_aspect_ratio = 0.0;                      //!< over every step
+  double min_volume_mm3 = 0.0;                        //!< the smallest tet volume over every step
 };
 
 //! Moves `mesh` (made on frame 0 of `surface`, whose vertices are its first nodes) with the surface through the
 //! output times `times_s` (s after frame 0; time_steps.h): the surface nodes at the periodic Catmull-Rom position
 //! (step_weights), the inner nodes at frame 0's position plus the extension of the wall displacement. The
 //! extension is linear, so it is solved once per key frame (one factorisation, one solve with three columns
-//! per frame) and combined with the same weights: exactly the extension of the interpolated wall. Where the
-//! wall's vertices slide along it faster than a thin tet at the wall can follow, a tet may still invert: its
-//! inner nodes are then moved locally (cavity_nodes_at). Output times run in parallel; each writes its own slot.
+//! per frame). Where the wall's vertices slide along it faster than a thin tet at the wall can follow, a tet may
+//! invert: each key frame's inner nodes are then untangled (untangle_tets, against frame 0's shapes), and the
+//! key frames are combined with the wall's own weights; a step whose combination still inverts a tet is
+//! untangled locally in turn (cavity_nodes_at). Key frames and output times run in parallel; each writes its own
+//! slot.
 //! \throw SolverError (InvertedElement) naming the time (s), the tet and the extensions tried when a tet's
 //! signed volume is <= 0 at some output time with both extensions.
 CavityMotion cavity_motion(const TetMesh& mesh, const MeshSequence& surface, const std::vector<double>& times_s,
                            const CavityMotionOptions& options = {});
 
 //! The node positions at `w` (a step_weights result): the surface combined from `surface`, the inner nodes
-//! from frame 0 plus the combined inner displacements of `motion`; where a tet is then inverted, the inner
-//! nodes of the inverted tets are lifted into the kernels of their stars (a local repair, a few sweeps), and
-//! `repaired` (when given) gets how many nodes moved.
+//! from frame 0 plus the combined inner displacements of `motion`; where a tet is then inverted or flat, the
+//! inner nodes around it are untangled (untangle_tets, a local repair), and `repaired` (when given) gets how many
+//! nodes moved.
 std::vector<Vec3> cavity_nodes_at(const TetMesh& mesh, const MeshSequence& surface, const CavityMotion& motion,
                                   const TimeWeights& w, std::size_t* repaired = nullptr);
 

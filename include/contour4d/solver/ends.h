@@ -49,20 +49,25 @@ std::vector<int> choose_ends(const std::vector<SurfaceEnd>& ends, const std::str
 
 //! A mesh sequence whose triangles carry a face id: 0 the wall, k > 0 the k-th opened end.
 struct FacedSequence {
-  MeshSequence seq;                   //!< the frames with every opened end flat
-  std::vector<std::uint8_t> face;     //!< per triangle
-  std::vector<std::string> names;     //!< per face id; names[0] = "wall"
-  std::vector<double> ring_moved_mm;  //!< per opened end: the largest move of a border vertex onto its plane
+  MeshSequence seq;                              //!< the frames with every opened end flat
+  std::vector<std::uint8_t> face;                //!< per triangle
+  std::vector<std::string> names;                //!< per face id; names[0] = "wall"
+  std::vector<double> ring_moved_mm;             //!< per opened end: the largest move of a border vertex onto its plane
+  std::vector<std::vector<std::uint32_t>> band;  //!< per opened end: the wall vertices that take up the border's
+                                                 //!< moves (between the border and the next contour), sorted
+  std::vector<double> band_moved_mm;             //!< per opened end: the largest move of a band vertex
   std::vector<std::vector<int>> not_flat_frames;  //!< per opened end: frames where it stays as reconstructed
   std::vector<double> plane_offset_mm;  //!< offset of each opened end's plane in each frame: [end · frames + frame]
 };
 
 //! Makes each end of `open` (indices into `ends`) a flat face in every frame: its border vertices are put on
-//! the frame's end plane (normal `normal`, offset the mean of theirs) and its inner vertices at the uniform
-//! (Tutte) harmonic map of that border, one sparse factorisation per end for all frames. Other ends stay
-//! closed as they were, part of the wall. `names` overrides the ends' default names in order. In a frame where
-//! the flat face would fold (the frame-0 border far from one plane there: biv-me's base moves to the next slice
-//! in systole), the end keeps its reconstructed shape in that frame, still its own face (not_flat_frames).
+//! the frame's end plane (normal `normal`, offset the mean of theirs), the wall between the border and the next
+//! contour (the band) moved along the normal by the harmonic extension of those moves, and its inner vertices at
+//! the uniform (Tutte) harmonic map of that border, a few folded triangles unfolded within the plane (a border
+//! with pixel dents). One sparse factorisation per end for all frames. Other ends stay closed as they were, part
+//! of the wall. `names` overrides the ends' default names in order. In a frame where the flat face would still
+//! fold, or it or the band would cross the wall, the end and the band keep their reconstructed shape in that
+//! frame, the end still its own face (not_flat_frames).
 //! \throw InvalidInput (InvertedElement) when an end's flat face folds in every frame; InvalidInput (Usage)
 //! for a repeated or empty name.
 FacedSequence open_ends(const MeshSequence& seq, const Vec3& normal, const std::vector<SurfaceEnd>& ends,

@@ -1,0 +1,151 @@
+// Untangling and smoothing a tetrahedral mesh by node-by-node optimisation: J. M. Escobar, E. Rodríguez,
+// R. Montenegro, G. Montero, J. M. González-Yuste, "Simultaneous untangling and smoothing of tetrahedral meshes",
+// CMAME 192 (2003). Each tet's distortion is K = |S|²_F / (3 h(σ)^(2/3)) with S its edge matrix times the inverse
+// of its reference edge matrix (a target-matrix shape measure, P. Knupp), σ = det S and
+// h(σ) = (σ + √(σ² + 4δ²)) / 2, which equals σ for valid tets when δ = 0 and stays positive for inverted ones, so
+// one smooth objective carries a node out of an inverted star and then keeps its tets from flattening.
+#include "contour4d/solver/tet_untangle.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "contour4d/metrics/tet_quality.h"
+
+namespace c4d {
+namespace {
+
+Eigen::Matrix3d edge_matrix(const std::vector<Vec3>& x, const Tet& q) {
+  const Vec3 e1 = x[q[1]] - x[q[0]], e2 = x[q[2]] - x[q[0]], e3 = x[q[3]] - x[q[0]];
+  Eigen::Matrix3d a;
+  a << e1.x, e2.x, e3.x, e1.y, e2.y, e3.y, e1.z, e2.z, e3.z;
+  return a;
+}
+
+bool bad_tet(const std::vector<Vec3>& x, const Tet& q, double max_aspect) {
+  return !(tet_volume(x[q[0]], x[q[1]], x[q[2]], x[q[3]]) > 0.0) ||
+         !(tet_aspect_ratio(x[q[0]], x[q[1]], x[q[2]], x[q[3]]) <= max_aspect);
+}
+
+struct Objective {
+  const std::vector<Tet>& tets;
+  const NodeStars& stars;
+  const std::vector<Eigen::Matrix3d>& target_inverse;  // per tet: its reference edge matrix, inverted
+
+  // σ of each tet of v's star, and the smallest.
+  double min_sigma(const std::vector<Vec3>& x, std::uint32_t v) const {
+    double m = HUGE_VAL;
+    for (std::uint32_t i = stars.offsets[v]; i < stars.offsets[v + 1]; ++i) {
+      const std::uint32_t t = stars.stars[i];
+      m = std::min(m, (edge_matrix(x, tets[t]) * target_inverse[t]).determinant());
+    }
+    return m;
+  }
+  // Σ K over v's star.
+  double value(const std::vector<Vec3>& x, std::uint32_t v, double delta) const {
+    double f = 0.0;
+    for (std::uint32_t i = stars.offsets[v]; i < stars.offsets[v + 1]; ++i) {
+      const std::uint32_t t = stars.stars[i];
+      const Eigen::Matrix3d s = edge_matrix(x, tets[t]) * target_inverse[t];
+      const double sigma = s.determinant();
+      const double h = 0.5 * (sigma + std::sqrt(sigma * sigma + 4.0 * delta * delta));
+      f += s.squaredNorm() / (3.0 * std::cbrt(h * h));
+    }
+    return f;
+  }
+};
+
+// Steepest descent on one node (central-difference gradient, backtracking steps from a tenth of its longest edge).
+void relax_node(std::vector<Vec3>& x, std::uint32_t v, const Objective& objective, const UntangleOptions& o) {
+  double edge = 0.0;
+  for (std::uint32_t i = objective.stars.offsets[v]; i < objective.stars.offsets[v + 1]; ++i)
+    for (std::uint32_t u : objective.tets[objective.stars.stars[i]]) edge = std::max(edge, norm(x[u] - x[v]));
+  if (!(edge > 0.0)) return;
+  for (int step = 0; step < o.node_steps; ++step) {
+    const double sigma = objective.min_sigma(x, v);
+    const double delta = sigma < o.epsilon ? std::sqrt(o.epsilon * (o.epsilon - sigma)) : 0.0;
+    const Vec3 p = x[v];
+    const double f0 = objective.value(x, v, delta), h = 1e-6 * edge;
+    double g[3];
+    for (int k = 0; k < 3; ++k) {
+      Vec3 d;
+      (k == 0 ? d.x : k == 1 ? d.y : d.z) = h;
+      x[v] = p + d;
+      const double plus = objective.value(x, v, delta);
+      x[v] = p - d;
+      g[k] = (plus - objective.value(x, v, delta)) / (2.0 * h);
+    }
+    const Vec3 grad{g[0], g[1], g[2]};
+    const double length = norm(grad);
+    x[v] = p;
+    if (!(length > 0.0)) return;
+    bool better = false;
+    for (double t = 0.1 * edge; t > 1e-7 * edge; t *= 0.5) {
+      x[v] = p - (t / length) * grad;
+      if (objective.value(x, v, delta) < f0) {
+        better = true;
+        break;
+      }
+    }
+    if (!better) {
+      x[v] = p;
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+NodeStars node_stars(std::size_t node_count, const std::vector<Tet>& tets) {
+  NodeStars s;
+  s.offsets.assign(node_count + 1, 0);
+  for (const Tet& q : tets)
+    for (std::uint32_t v : q) ++s.offsets[v + 1];
+  for (std::size_t v = 0; v < node_count; ++v) s.offsets[v + 1] += s.offsets[v];
+  s.stars.resize(s.offsets.back());
+  std::vector<std::uint32_t> fill(s.offsets.begin(), s.offsets.end() - 1);
+  for (std::uint32_t t = 0; t < tets.size(); ++t)
+    for (std::uint32_t v : tets[t]) s.stars[fill[v]++] = t;
+  return s;
+}
+
+std::size_t untangle_tets(std::vector<Vec3>& x, const std::vector<Vec3>& reference, const std::vector<Tet>& tets,
+                          std::size_t fixed_nodes, const NodeStars& stars, const UntangleOptions& options) {
+  std::vector<char> free(x.size(), 0);
+  for (const Tet& q : tets)
+    if (bad_tet(x, q, options.max_aspect))
+      for (std::uint32_t v : q)
+        if (v >= fixed_nodes) free[v] = 1;
+  if (std::find(free.begin(), free.end(), 1) == free.end()) return 0;
+  std::vector<Eigen::Matrix3d> target_inverse(tets.size());
+  for (std::size_t t = 0; t < tets.size(); ++t) target_inverse[t] = edge_matrix(reference, tets[t]).inverse();
+  const Objective objective{tets, stars, target_inverse};
+  std::vector<char> moved(x.size(), 0);
+  bool inverted = true;
+  for (int sweep = 0; sweep < options.sweeps; ++sweep) {
+    // While a tet stays inverted, the free region grows by one ring of tets.
+    if (inverted) {
+      std::vector<char> grown = free;
+      for (std::size_t v = fixed_nodes; v < x.size(); ++v)
+        if (free[v])
+          for (std::uint32_t i = stars.offsets[v]; i < stars.offsets[v + 1]; ++i)
+            for (std::uint32_t u : tets[stars.stars[i]])
+              if (u >= fixed_nodes) grown[u] = 1;
+      free.swap(grown);
+    }
+    for (std::size_t v = fixed_nodes; v < x.size(); ++v)
+      if (free[v]) {
+        relax_node(x, static_cast<std::uint32_t>(v), objective, options);
+        moved[v] = 1;
+      }
+    inverted = std::any_of(tets.begin(), tets.end(),
+                           [&](const Tet& q) { return !(tet_volume(x[q[0]], x[q[1]], x[q[2]], x[q[3]]) > 0.0); });
+    const bool flat =
+        std::any_of(tets.begin(), tets.end(), [&](const Tet& q) { return bad_tet(x, q, options.max_aspect); });
+    if (!inverted && (!flat || sweep + 1 >= options.quality_sweeps)) break;
+  }
+  return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
+}
+
+}  // namespace c4d
