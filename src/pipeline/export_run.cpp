@@ -140,7 +140,8 @@ std::string report_json(const ExportInput& in, const ExportRun& run, const Expor
                      {"surface_volume_ml", run.surface_volume_mm3[i] / 1000.0},
                      {"min_dihedral_deg", h.motion.steps[i].min_dihedral_deg},
                      {"max_aspect_ratio", h.motion.steps[i].max_aspect_ratio},
-                     {"min_tet_volume_mm3", h.motion.steps[i].min_volume_mm3}});
+                     {"min_tet_volume_mm3", h.motion.steps[i].min_volume_mm3},
+                     {"untangled_nodes", h.motion.untangled_step_nodes[i]}});
   Json j;
   j["tool"] = "contour4d 0.1.0";
   j["input"] = in.folder.string();
@@ -168,6 +169,7 @@ std::string report_json(const ExportInput& in, const ExportRun& run, const Expor
                  {"frame0", quality_json(h.motion.frame0)},
                  {"extension", h.motion.extension == Extension::Harmonic ? "harmonic" : "stiffened"},
                  {"harmonic_fault", h.motion.harmonic_fault},
+                 {"untangled_nodes_per_key_frame", h.motion.untangled_key_nodes},
                  {"over_the_cycle",
                   {{"min_dihedral_deg", h.motion.min_dihedral_deg},
                    {"max_aspect_ratio", h.motion.max_aspect_ratio},

@@ -161,14 +161,14 @@ std::vector<std::size_t> untangle_key_frames(const TetMesh& mesh, const MeshSequ
 
 std::vector<TetQuality> measure_steps(const TetMesh& mesh, const MeshSequence& surface, const CavityMotion& motion,
                                       const std::vector<double>& times_s, int threads,
-                                      std::vector<std::size_t>& repaired) {
+                                      std::vector<std::size_t>& untangled) {
   std::vector<TetQuality> steps(times_s.size());
-  repaired.assign(times_s.size(), 0);
+  untangled.assign(times_s.size(), 0);
   for_each_index(times_s.size(), threads, [&](std::size_t i) {
     std::size_t moved = 0;
     steps[i] =
         measure_tets(cavity_nodes_at(mesh, surface, motion, step_weights(surface, times_s[i]), &moved), mesh.tets);
-    repaired[i] = moved;
+    untangled[i] = moved;
   });
   return steps;
 }
@@ -183,14 +183,14 @@ std::size_t first_inverted_step(const std::vector<TetQuality>& steps) {
 }  // namespace
 
 std::vector<Vec3> cavity_nodes_at(const TetMesh& mesh, const MeshSequence& surface, const CavityMotion& motion,
-                                  const TimeWeights& w, std::size_t* repaired) {
+                                  const TimeWeights& w, std::size_t* untangled) {
   std::vector<Vec3> nodes = combine_frames(surface.positions, w);
   const std::vector<Vec3> inner = combine_frames(motion.inner_displacement, w);
   nodes.resize(mesh.nodes.size());
   for (std::size_t i = 0; i < inner.size(); ++i)
     nodes[mesh.surface_nodes + i] = mesh.nodes[mesh.surface_nodes + i] + inner[i];
   const std::size_t moved = untangle_tets(nodes, mesh.nodes, mesh.tets, mesh.surface_nodes, motion.stars);
-  if (repaired) *repaired = moved;
+  if (untangled) *untangled = moved;
   return nodes;
 }
 
@@ -211,7 +211,7 @@ CavityMotion cavity_motion(const TetMesh& mesh, const MeshSequence& surface, con
                         "the moving cavity mesh inverts: " + m.harmonic_fault + "; " + e.what(),
                         "nothing was written; try a finer surface (reconstruct --edge) or fewer opened ends");
     }
-    m.steps = measure_steps(mesh, surface, m, times_s, options.threads, m.repaired_nodes);
+    m.steps = measure_steps(mesh, surface, m, times_s, options.threads, m.untangled_step_nodes);
     const std::size_t bad = first_inverted_step(m.steps);
     if (bad == m.steps.size()) break;
     const Tet& worst = mesh.tets[m.steps[bad].first_inverted];

@@ -33,7 +33,7 @@ struct CavityMotion {
   std::string harmonic_fault;                         //!< why Harmonic was not used ("" when it was)
   std::vector<std::vector<Vec3>> inner_displacement;  //!< per key frame, per inner node (node − surface_nodes) (mm)
   std::vector<TetQuality> steps;                      //!< per output time
-  std::vector<std::size_t> repaired_nodes;            //!< per output time: inner nodes moved by the local repair
+  std::vector<std::size_t> untangled_step_nodes;      //!< per output time: inner nodes moved by untangle_tets
   std::vector<std::size_t> untangled_key_nodes;       //!< per key frame: inner nodes moved by untangle_tets
   NodeStars stars;                                    //!< each node's tets, for the repairs
   TetQuality frame0;                                  //!< the mesh as made (frame 0)
@@ -58,9 +58,9 @@ CavityMotion cavity_motion(const TetMesh& mesh, const MeshSequence& surface, con
 
 //! The node positions at `w` (a step_weights result): the surface combined from `surface`, the inner nodes
 //! from frame 0 plus the combined inner displacements of `motion`; where a tet is then inverted or flat, the
-//! inner nodes around it are untangled (untangle_tets, a local repair), and `repaired` (when given) gets how many
+//! inner nodes around it are untangled (untangle_tets, a local repair), and `untangled` (when given) gets how many
 //! nodes moved.
 std::vector<Vec3> cavity_nodes_at(const TetMesh& mesh, const MeshSequence& surface, const CavityMotion& motion,
-                                  const TimeWeights& w, std::size_t* repaired = nullptr);
+                                  const TimeWeights& w, std::size_t* untangled = nullptr);
 
 }  // namespace c4d
