@@ -3,14 +3,19 @@
 // inverted tet, the cavity's volume the surface's, the same bits whatever the thread count).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
 
 #include "contour4d/core/errors.h"
 #include "contour4d/metrics/tet_quality.h"
+#include "contour4d/metrics/topology.h"
+#include "contour4d/phantoms/phantom.h"
+#include "contour4d/surface/reconstruct.h"
 #include "contour4d/solver/cavity_mesh.h"
 #include "contour4d/solver/cavity_motion.h"
+#include "contour4d/solver/ends.h"
 #include "contour4d/solver/tet_untangle.h"
 #include "contour4d/solver/time_steps.h"
 #include "contour4d/temporal/interpolate.h"
@@ -178,6 +183,73 @@ TEST_F(Cavity, ThreadCountDoesNotChangeABit) {
     EXPECT_EQ(one.steps[i].volume_mm3, two.steps[i].volume_mm3);
     EXPECT_EQ(one.steps[i].min_dihedral_deg, two.steps[i].min_dihedral_deg);
     EXPECT_EQ(one.steps[i].max_aspect_ratio, two.steps[i].max_aspect_ratio);
+  }
+}
+
+// A family of bases whose border leaves its plane: the ellipsoid phantom's one-frame surface, copied into 6
+// frames, each frame's base region (the cap, the border, and the wall tapering to nothing 4 mm in) bent along the
+// normal by a random wave of 2-5 mm and 1-3 periods around the border, and the whole frame scaled by a random
+// 0.8-1.1 (seeded). Every frame's base comes out flat, unfolded and uncrossed, the wall off the band exactly as given,
+// and the moving cavity valid at every step.
+TEST(FlatEnds, RandomBentBordersAreFlattenedThroughTheirBand) {
+  const Phantom ph = make_phantom("ellipsoid", {});
+  const TriangleMesh m0 = reconstruct_frame(ph.contours, 0);
+  const Vec3 n = ph.contours.normal;
+  const std::vector<SurfaceEnd> ends = find_ends(m0, n);
+  ASSERT_FALSE(ends.empty());
+  const std::vector<int> base = choose_ends(ends, "base");
+  ASSERT_EQ(base.size(), 1u);
+  const SurfaceEnd& end = ends[static_cast<std::size_t>(base[0])];
+  const Vec3 centre = end.centroid;
+  const Vec3 a = normalized(cross(n, std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0})), b = cross(n, a);
+  for (unsigned seed = 0; seed < 4; ++seed) {
+    SCOPED_TRACE(seed);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    MeshSequence seq;
+    seq.triangles = m0.triangles;
+    for (int f = 0; f < 6; ++f) {
+      seq.times_ms.push_back(100.0 * f);
+      std::vector<Vec3> x = m0.positions;
+      if (f > 0) {
+        const double amplitude = 2.0 + 3.0 * u(rng), phase = 6.3 * u(rng), scale = 0.8 + 0.3 * u(rng);
+        const int waves = 1 + static_cast<int>(rng() % 3);
+        for (Vec3& p : x) {
+          const double h = end.side * (dot(n, p) - end.offset_mm);      // > 0 beyond the base plane
+          const double reach = std::clamp(1.0 - (-h) / 4.0, 0.0, 1.0);  // 1 at and beyond the plane, 0 at 4 mm in
+          const Vec3 r = p - centre;
+          const double angle = std::atan2(dot(r, b), dot(r, a));
+          p = p + reach * amplitude * std::sin(waves * angle + phase) * n;
+          p = centre + scale * (p - centre);
+        }
+      }
+      seq.positions.push_back(std::move(x));
+    }
+    for (std::size_t f = 0; f < seq.positions.size(); ++f)
+      ASSERT_EQ(count_self_intersections({seq.positions[f], seq.triangles}), 0u) << "the bent input crosses";
+    const FacedSequence faced = open_ends(seq, n, ends, base);
+    EXPECT_TRUE(faced.not_flat_frames[0].empty());
+    std::vector<char> off_band(seq.positions.front().size(), 1);
+    for (std::uint32_t v : end.border) off_band[v] = 0;
+    for (std::uint32_t v : end.inner) off_band[v] = 0;
+    for (std::uint32_t v : faced.band[0]) off_band[v] = 0;
+    for (std::size_t f = 0; f < seq.positions.size(); ++f) {
+      const std::vector<Vec3>& x = faced.seq.positions[f];
+      EXPECT_EQ(count_self_intersections({x, faced.seq.triangles}), 0u) << "frame " << f;
+      const double plane = faced.plane_offset_mm[f];
+      for (std::uint32_t t : end.triangles) {
+        const Triangle& tri = faced.seq.triangles[t];
+        EXPECT_GT(end.side * dot(cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]), n), 0.0) << "frame " << f;
+        for (std::uint32_t v : tri) EXPECT_NEAR(dot(n, x[v]), plane, 1e-9);
+      }
+      for (std::size_t v = 0; v < x.size(); ++v) {
+        if (!off_band[v]) continue;
+        ASSERT_EQ(x[v].x, seq.positions[f][v].x) << "frame " << f << " vertex " << v;
+      }
+    }
+    const TetMesh cavity = mesh_cavity(faced.seq.frame(0));
+    const CavityMotion motion = cavity_motion(cavity, faced.seq, make_time_steps(0.6, {30, 0.0, 1}).times_s, {2});
+    for (const TetQuality& q : motion.steps) EXPECT_EQ(q.inverted, 0u);
   }
 }
 
