@@ -33,7 +33,7 @@ struct Objective {
   const NodeStars& stars;
   const std::vector<Eigen::Matrix3d>& target_inverse;  // per tet: its reference edge matrix, inverted
 
-  // σ of each tet of v's star, and the smallest.
+  // The smallest σ over v's star.
   double min_sigma(const std::vector<Vec3>& x, std::uint32_t v) const {
     double m = HUGE_VAL;
     for (std::uint32_t i = stars.offsets[v]; i < stars.offsets[v + 1]; ++i) {
@@ -42,22 +42,38 @@ struct Objective {
     }
     return m;
   }
-  // Σ K over v's star.
-  double value(const std::vector<Vec3>& x, std::uint32_t v, double delta) const {
+  // Σ K over v's star, and its gradient with respect to x[v] when `gradient` is given. With g the row of W⁻¹
+  // that x[v] enters S by (S = A W⁻¹; minus the sum of the rows for a tet's first node): ∇|S|² = 2 S g and
+  // ∇σ = cof(S) g, cof(S) = σ S⁻ᵀ = [s₁×s₂, s₂×s₀, s₀×s₁], and ∇K = K (∇|S|² / |S|² − ⅔ h′(σ) ∇σ / h).
+  double value(const std::vector<Vec3>& x, std::uint32_t v, double delta, Eigen::Vector3d* gradient) const {
     double f = 0.0;
+    if (gradient) gradient->setZero();
     for (std::uint32_t i = stars.offsets[v]; i < stars.offsets[v + 1]; ++i) {
       const std::uint32_t t = stars.stars[i];
       const Eigen::Matrix3d s = edge_matrix(x, tets[t]) * target_inverse[t];
-      const double sigma = s.determinant();
-      const double h = 0.5 * (sigma + std::sqrt(sigma * sigma + 4.0 * delta * delta));
-      f += s.squaredNorm() / (3.0 * std::cbrt(h * h));
+      const double sigma = s.determinant(), root = std::sqrt(sigma * sigma + 4.0 * delta * delta);
+      const double h = 0.5 * (sigma + root), frobenius = s.squaredNorm();
+      const double k = frobenius / (3.0 * std::cbrt(h * h));
+      f += k;
+      if (!gradient || !(frobenius > 0.0) || !(root > 0.0)) continue;
+      const Tet& q = tets[t];
+      const int corner = static_cast<int>(std::find(q.begin(), q.end(), v) - q.begin());
+      const Eigen::Vector3d g = corner == 0 ? Eigen::Vector3d(-target_inverse[t].colwise().sum().transpose())
+                                            : Eigen::Vector3d(target_inverse[t].row(corner - 1).transpose());
+      Eigen::Matrix3d cofactor;
+      cofactor.col(0) = s.col(1).cross(s.col(2));
+      cofactor.col(1) = s.col(2).cross(s.col(0));
+      cofactor.col(2) = s.col(0).cross(s.col(1));
+      *gradient += k * (2.0 * (s * g) / frobenius - (2.0 / 3.0) / root * (cofactor * g));
     }
     return f;
   }
 };
 
-// Steepest descent on one node (central-difference gradient, backtracking steps from a tenth of its longest edge).
+// Steepest descent on one node (backtracking steps from a tenth of its longest edge), until a step gains less
+// than kConverged of the objective.
 void relax_node(std::vector<Vec3>& x, std::uint32_t v, const Objective& objective, const UntangleOptions& o) {
+  constexpr double kConverged = 1e-5;
   double edge = 0.0;
   for (std::uint32_t i = objective.stars.offsets[v]; i < objective.stars.offsets[v + 1]; ++i)
     for (std::uint32_t u : objective.tets[objective.stars.stars[i]]) edge = std::max(edge, norm(x[u] - x[v]));
@@ -66,32 +82,22 @@ void relax_node(std::vector<Vec3>& x, std::uint32_t v, const Objective& objectiv
     const double sigma = objective.min_sigma(x, v);
     const double delta = sigma < o.epsilon ? std::sqrt(o.epsilon * (o.epsilon - sigma)) : 0.0;
     const Vec3 p = x[v];
-    const double f0 = objective.value(x, v, delta), h = 1e-6 * edge;
-    double g[3];
-    for (int k = 0; k < 3; ++k) {
-      Vec3 d;
-      (k == 0 ? d.x : k == 1 ? d.y : d.z) = h;
-      x[v] = p + d;
-      const double plus = objective.value(x, v, delta);
-      x[v] = p - d;
-      g[k] = (plus - objective.value(x, v, delta)) / (2.0 * h);
-    }
-    const Vec3 grad{g[0], g[1], g[2]};
+    Eigen::Vector3d g;
+    const double f0 = objective.value(x, v, delta, &g);
+    const Vec3 grad{g.x(), g.y(), g.z()};
     const double length = norm(grad);
-    x[v] = p;
     if (!(length > 0.0)) return;
-    bool better = false;
+    double f1 = f0;
     for (double t = 0.1 * edge; t > 1e-7 * edge; t *= 0.5) {
       x[v] = p - (t / length) * grad;
-      if (objective.value(x, v, delta) < f0) {
-        better = true;
-        break;
-      }
+      f1 = objective.value(x, v, delta, nullptr);
+      if (f1 < f0) break;
     }
-    if (!better) {
+    if (!(f1 < f0)) {
       x[v] = p;
       return;
     }
+    if (f0 - f1 < kConverged * f0) return;
   }
 }
 
