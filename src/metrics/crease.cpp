@@ -36,6 +36,34 @@ double p95(std::vector<double>& a) {
   return metrics_internal::percentile(a, 0.95);
 }
 
+// Calls visit(lo, hi, angle, t0, t1) for every edge shared by exactly two triangles t0 < t1 with area, the
+// angle between their normals in degrees. Triangles with an invalid index are skipped (topology.h reports them).
+template <class Visit>
+void for_each_interior_edge(const TriangleMesh& mesh, const Visit& visit) {
+  std::vector<std::array<std::uint32_t, 3>> edges;  // (lo, hi, triangle), sorted: a run of two is an interior edge
+  edges.reserve(3 * mesh.triangles.size());
+  const std::size_t nv = mesh.positions.size();
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
+    if (j - i == 2) {
+      const double angle = metrics_internal::angle_deg(facet_normal(mesh, mesh.triangles[edges[i][2]]),
+                                                       facet_normal(mesh, mesh.triangles[edges[i + 1][2]]));
+      if (std::isfinite(angle)) visit(edges[i][0], edges[i][1], angle, edges[i][2], edges[i + 1][2]);
+    }
+    i = j;
+  }
+}
+
 }  // namespace
 
 CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const Frame& frame, double tolerance_mm) {
@@ -45,40 +73,16 @@ CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const 
   const std::vector<int> plane = plane_of_vertices(mesh, seq.normal, offsets, tolerance_mm);
   const int last = static_cast<int>(offsets.size()) - 1;
 
-  // Edges as (lo, hi, triangle), sorted: a run of two is an interior edge.
-  std::vector<std::array<std::uint32_t, 3>> edges;
-  edges.reserve(3 * mesh.triangles.size());
-  const std::size_t nv = mesh.positions.size();
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    const Triangle& t = mesh.triangles[f];
-    if (t[0] >= nv || t[1] >= nv || t[2] >= nv) continue;  // an invalid triangle (topology.h reports it)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-      edges.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f)});
-    }
-  }
-  std::sort(edges.begin(), edges.end());
   std::vector<double> on, ends, between;
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
-    if (j - i == 2) {
-      const double angle = metrics_internal::angle_deg(facet_normal(mesh, mesh.triangles[edges[i][2]]),
-                                                       facet_normal(mesh, mesh.triangles[edges[i + 1][2]]));
-      if (!std::isfinite(angle)) {  // a zero-area triangle has no normal
-        i = j;
-        continue;
-      }
-      const int pa = plane[edges[i][0]], pb = plane[edges[i][1]];
-      if (pa >= 0 && pa == pb) {
-        on.push_back(angle);
-        if (pa == 0 || pa == last) ends.push_back(angle);
-      } else if (pa < 0 && pb < 0) {
-        between.push_back(angle);
-      }
+  for_each_interior_edge(mesh, [&](std::uint32_t lo, std::uint32_t hi, double angle, std::uint32_t, std::uint32_t) {
+    const int pa = plane[lo], pb = plane[hi];
+    if (pa >= 0 && pa == pb) {
+      on.push_back(angle);
+      if (pa == 0 || pa == last) ends.push_back(angle);
+    } else if (pa < 0 && pb < 0) {
+      between.push_back(angle);
     }
-    i = j;
-  }
+  });
   CreaseAngles r;
   r.on_contours = on.size();
   r.on_ends = ends.size();
@@ -87,6 +91,14 @@ CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const 
   r.on_ends_p95 = p95(ends);
   r.between_p95 = p95(between);
   return r;
+}
+
+Fold sharpest_fold(const TriangleMesh& mesh) {
+  Fold fold;
+  for_each_interior_edge(mesh, [&](std::uint32_t, std::uint32_t, double angle, std::uint32_t t0, std::uint32_t t1) {
+    if (angle > fold.angle_deg) fold = {angle, t0, t1};
+  });
+  return fold;
 }
 
 }  // namespace c4d

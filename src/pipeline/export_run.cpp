@@ -12,6 +12,7 @@
 #include "contour4d/io/mesh_output.h"
 #include "contour4d/io/vtk_grid.h"
 #include "contour4d/io/vtk_xml.h"
+#include "contour4d/metrics/crease.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/solver/openfoam.h"
 #include "contour4d/solver/svfsi.h"
@@ -180,6 +181,24 @@ std::string report_json(const ExportInput& in, const ExportRun& run, const Expor
   return j.dump(2) + "\n";
 }
 
+// A wall that folds back on itself (two triangles sharing an edge with normals more than this apart) cannot be
+// the boundary of a valid cavity at that frame: it is refused before the cavity is meshed and moved. Real
+// creases of the reconstructions stay below it (left-heart cycle at --edge 2: 127°; biv-me: 88°).
+constexpr double kMaxFoldDeg = 150.0;
+
+void refuse_folds(const MeshSequence& seq) {
+  for (std::size_t f = 0; f < seq.positions.size(); ++f) {
+    const Fold fold = sharpest_fold(seq.frame(f));
+    if (fold.angle_deg > kMaxFoldDeg)
+      throw SolverError(ErrorCode::InvertedElement, {},
+                        fmt::format("frame {}: the wall folds back on itself between triangles {} and {} ({:.1f}° "
+                                    "between their normals, over {:.0f}°): no cavity mesh can follow it",
+                                    f, fold.first, fold.second, fold.angle_deg, kMaxFoldDeg),
+                        "nothing was written; reconstruct again (another --edge) and check that frame with "
+                        "`contour4d evaluate`");
+  }
+}
+
 }  // namespace
 
 ExportRun export_run(const ExportInput& in, const ExportRunOptions& o) {
@@ -193,6 +212,7 @@ ExportRun export_run(const ExportInput& in, const ExportRunOptions& o) {
   Handoff& h = run.handoff;
   h.surface = open_ends(in.seq, in.normal, run.ends, run.opened, o.names);
   h.steps = make_time_steps(cycle_period(in.seq.times_ms) / 1000.0, o.steps);
+  refuse_folds(h.surface.seq);
   h.cavity = mesh_cavity(h.surface.seq.frame(0), o.cavity);
   h.motion = cavity_motion(h.cavity, h.surface.seq, h.steps.times_s, {o.threads});
   for (std::size_t i = 0; i < h.steps.times_s.size(); ++i) {

@@ -9,9 +9,11 @@
 #include <random>
 
 #include "contour4d/core/errors.h"
+#include "contour4d/metrics/crease.h"
 #include "contour4d/metrics/tet_quality.h"
 #include "contour4d/metrics/topology.h"
 #include "contour4d/phantoms/phantom.h"
+#include "contour4d/pipeline/export_run.h"
 #include "contour4d/surface/reconstruct.h"
 #include "contour4d/solver/cavity_mesh.h"
 #include "contour4d/solver/cavity_motion.h"
@@ -250,6 +252,45 @@ TEST(FlatEnds, RandomBentBordersAreFlattenedThroughTheirBand) {
     const TetMesh cavity = mesh_cavity(faced.seq.frame(0));
     const CavityMotion motion = cavity_motion(cavity, faced.seq, make_time_steps(0.6, {30, 0.0, 1}).times_s, {2});
     for (const TetQuality& q : motion.steps) EXPECT_EQ(q.inverted, 0u);
+  }
+}
+
+// A wall folded back on itself in one frame (two triangles sharing an edge turned onto each other, a fin that
+// crosses nothing): sharpest_fold finds it near 180° where the unfolded frames stay far below, and export_run
+// refuses the sequence with InvertedElement (exit 31) naming the frame, before any cavity is meshed.
+TEST(FlatEnds, AWallFoldedBackOnItselfIsRefusedByName) {
+  const Phantom ph = make_phantom("ellipsoid", {});
+  const TriangleMesh m0 = reconstruct_frame(ph.contours, 0);
+  ExportInput in;
+  in.folder = "folded";
+  in.normal = ph.contours.normal;
+  in.seq.triangles = m0.triangles;
+  for (int f = 0; f < 3; ++f) {
+    in.seq.positions.push_back(m0.positions);
+    in.seq.times_ms.push_back(100.0 * f);
+  }
+  EXPECT_LT(sharpest_fold(m0).angle_deg, 90.0);
+  // Triangle 0 (a, b, c) and its neighbour across a-b (b, a, d): d moved onto c's side of a-b.
+  const Triangle t0 = m0.triangles[0];
+  const std::uint32_t a = t0[0], b = t0[1], c = t0[2];
+  std::uint32_t d = a;
+  for (const Triangle& t : m0.triangles)
+    for (int k = 0; k < 3; ++k)
+      if (t[static_cast<std::size_t>(k)] == b && t[static_cast<std::size_t>((k + 1) % 3)] == a)
+        d = t[static_cast<std::size_t>((k + 2) % 3)];
+  ASSERT_NE(d, a);
+  const Vec3 mid = 0.5 * (m0.positions[a] + m0.positions[b]);
+  in.seq.positions[2][d] = mid + 0.8 * (m0.positions[c] - mid);
+  EXPECT_GT(sharpest_fold(in.seq.frame(2)).angle_deg, 170.0);
+  ExportRunOptions o;
+  o.targets = {"vampy"};
+  o.steps = {10, 0.0, 1};
+  try {
+    export_run(in, o);
+    FAIL() << "no throw";
+  } catch (const SolverError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvertedElement);
+    EXPECT_NE(std::string(e.what()).find("frame 2: the wall folds back on itself"), std::string::npos) << e.what();
   }
 }
 

@@ -32,4 +32,15 @@ struct CreaseAngles {
 CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const Frame& frame,
                            double tolerance_mm = 1e-3);
 
+//! The sharpest edge of a mesh: the largest angle between the normals of two triangles sharing an edge (degrees).
+//! Near 180° the surface folds back on itself there, a fin that crosses nothing (the two triangles share the
+//! edge) but that no volume mesh can fill.
+struct Fold {
+  double angle_deg = 0.0;
+  std::size_t first = 0, second = 0;  //!< the two triangles (first < second)
+};
+
+//! The sharpest fold of `mesh` (crease_angles' rule for which edges count).
+Fold sharpest_fold(const TriangleMesh& mesh);
+
 }  // namespace c4d
