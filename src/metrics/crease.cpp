@@ -93,12 +93,29 @@ CreaseAngles crease_angles(const TriangleMesh& mesh, const Sequence& seq, const 
   return r;
 }
 
-Fold sharpest_fold(const TriangleMesh& mesh) {
-  Fold fold;
-  for_each_interior_edge(mesh, [&](std::uint32_t, std::uint32_t, double angle, std::uint32_t t0, std::uint32_t t1) {
-    if (angle > fold.angle_deg) fold = {angle, t0, t1};
+std::vector<std::array<std::uint32_t, 2>> neighbour_pairs(const TriangleMesh& mesh) {
+  std::vector<std::array<std::uint32_t, 2>> pairs;
+  for_each_interior_edge(mesh, [&](std::uint32_t, std::uint32_t, double, std::uint32_t t0, std::uint32_t t1) {
+    pairs.push_back({t0, t1});
   });
+  return pairs;
+}
+
+Fold sharpest_fold(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                   const std::vector<std::array<std::uint32_t, 2>>& pairs) {
+  const auto normal = [&](const Triangle& t) {
+    return normalized(cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]));
+  };
+  Fold fold;
+  for (const auto& [t0, t1] : pairs) {
+    const double angle = metrics_internal::angle_deg(normal(triangles[t0]), normal(triangles[t1]));
+    if (angle > fold.angle_deg) fold = {angle, t0, t1};
+  }
   return fold;
+}
+
+Fold sharpest_fold(const TriangleMesh& mesh) {
+  return sharpest_fold(mesh.positions, mesh.triangles, neighbour_pairs(mesh));
 }
 
 }  // namespace c4d

@@ -4,7 +4,9 @@
 //! in a slice plane), on the first and last contours (where the caps meet the wall) and between the slices. A
 //! surface that is smooth through its contours has the same angles on them as between them.
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "contour4d/core/mesh.h"
@@ -40,7 +42,16 @@ struct Fold {
   std::size_t first = 0, second = 0;  //!< the two triangles (first < second)
 };
 
-//! The sharpest fold of `mesh` (crease_angles' rule for which edges count).
+//! The pairs of triangles that share an edge, each edge once (crease_angles' rule: edges of exactly two triangles
+//! with area, valid indices), for sharpest_fold over many positions of one mesh.
+std::vector<std::array<std::uint32_t, 2>> neighbour_pairs(const TriangleMesh& mesh);
+
+//! The sharpest fold over `pairs` (neighbour_pairs of the same triangles) at `positions`; a pair whose triangle
+//! has no area there is skipped.
+Fold sharpest_fold(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                   const std::vector<std::array<std::uint32_t, 2>>& pairs);
+
+//! The sharpest fold of `mesh`.
 Fold sharpest_fold(const TriangleMesh& mesh);
 
 }  // namespace c4d

@@ -63,7 +63,8 @@ struct ExportRun {
 
 //! Opens the chosen ends, cuts the cycle into steps, meshes the cavity and moves it. Nothing is written.
 //! \throw InvalidInput (Usage: options; InvertedElement: a flat face folds); SolverError (VolumeMeshFailed,
-//! InvertedElement: the moving cavity folds at some time with both extensions).
+//! InvertedElement: the wall folds back on itself at a key frame or output time, or the moving cavity folds at
+//! some time with both extensions).
 ExportRun export_run(const ExportInput& input, const ExportRunOptions& options);
 
 //! Writes each target into `out`/<target>/, the frame-0 cavity into `out`/cavity/ and export.json.
