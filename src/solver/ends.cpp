@@ -4,7 +4,10 @@
 // chosen cap is flattened by W. T. Tutte's barycentric embedding ("How to draw a graph", Proc. London Math. Soc.
 // 1963): each inner vertex at the mean of its neighbours with the border fixed on the plane, which cannot fold
 // for a convex border (Floater 2003, "One-to-one piecewise linear mappings over triangulations") and is checked
-// triangle by triangle otherwise. It is linear in the border, so it commutes with the interpolation in time.
+// triangle by triangle otherwise, a few folded triangles of a border with pixel dents unfolded within the plane.
+// It is linear in the border, so it commutes with the interpolation in time. Where a frame's border lies off one
+// plane (a base whose contour vanishes in systole), the wall band up to the next contour takes up the border's
+// move onto the plane by a harmonic extension along the normal, not its first row of triangles alone.
 #include "contour4d/solver/ends.h"
 
 #include <algorithm>
