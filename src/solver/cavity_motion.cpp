@@ -9,8 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <set>
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>

@@ -402,8 +402,8 @@ double facing(const std::vector<Vec3>& x, const Triangle& tri, int side, const V
 
 // Moves the inner vertices of a flat face's folded triangles within its plane until none folds (a few sweeps):
 // each steps to where the smallest of its triangles grows (along normal × the opposite edge), the step halved
-// when that does not raise it. The planar counterpart of lifting a node into the kernel of its star; a
-// border with small dents (pixel steps) folds Tutte's embedding at a few triangles only.
+// when that does not raise it: the vertex moves into the kernel of its planar star. A border with small dents
+// (pixel steps) folds Tutte's embedding at a few triangles only.
 void unfold_face(std::vector<Vec3>& x, const std::vector<Triangle>& triangles, const SurfaceEnd& end,
                  const Vec3& normal, const std::vector<std::vector<std::uint32_t>>& faces_of) {
   constexpr int kSweeps = 20, kSteps = 40;

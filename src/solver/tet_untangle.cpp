@@ -124,8 +124,9 @@ std::size_t untangle_tets(std::vector<Vec3>& x, const std::vector<Vec3>& referen
       for (std::uint32_t v : q)
         if (v >= fixed_nodes) free[v] = 1;
   if (std::find(free.begin(), free.end(), 1) == free.end()) return 0;
+  // The reference shapes, inverted, of the tets the free region touches (computed as the region grows).
   std::vector<Eigen::Matrix3d> target_inverse(tets.size());
-  for (std::size_t t = 0; t < tets.size(); ++t) target_inverse[t] = edge_matrix(reference, tets[t]).inverse();
+  std::vector<char> targeted(tets.size(), 0);
   const Objective objective{tets, stars, target_inverse};
   std::vector<char> moved(x.size(), 0);
   bool inverted = true;
@@ -139,16 +140,28 @@ std::size_t untangle_tets(std::vector<Vec3>& x, const std::vector<Vec3>& referen
             for (std::uint32_t u : tets[stars.stars[i]])
               if (u >= fixed_nodes) grown[u] = 1;
       free.swap(grown);
+      for (std::size_t v = fixed_nodes; v < x.size(); ++v)
+        if (free[v])
+          for (std::uint32_t i = stars.offsets[v]; i < stars.offsets[v + 1]; ++i) {
+            const std::uint32_t t = stars.stars[i];
+            if (!targeted[t]) target_inverse[t] = edge_matrix(reference, tets[t]).inverse();
+            targeted[t] = 1;
+          }
     }
     for (std::size_t v = fixed_nodes; v < x.size(); ++v)
       if (free[v]) {
         relax_node(x, static_cast<std::uint32_t>(v), objective, options);
         moved[v] = 1;
       }
-    inverted = std::any_of(tets.begin(), tets.end(),
-                           [&](const Tet& q) { return !(tet_volume(x[q[0]], x[q[1]], x[q[2]], x[q[3]]) > 0.0); });
-    const bool flat =
-        std::any_of(tets.begin(), tets.end(), [&](const Tet& q) { return bad_tet(x, q, options.max_aspect); });
+    bool flat = false;
+    inverted = false;
+    for (const Tet& q : tets) {
+      if (!(tet_volume(x[q[0]], x[q[1]], x[q[2]], x[q[3]]) > 0.0)) {
+        inverted = flat = true;
+        break;
+      }
+      flat = flat || bad_tet(x, q, options.max_aspect);
+    }
     if (!inverted && (!flat || sweep + 1 >= options.quality_sweeps)) break;
   }
   return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
