@@ -55,8 +55,9 @@ inline void add_input_options(CLI::App* app, InputOptions& o, std::vector<std::s
       ->check(CLI::NonNegativeNumber)
       ->excludes(exact);
   app->add_flag("--align-slices", o.align_slices,
-                "undo breath-hold shifts: move each slice in its plane so the contours' centroids follow a smooth "
-                "long axis (a robust fit; each slice's move is listed in report.json \"slice_alignment\")");
+                "undo breath-hold shifts: move each slice in its plane onto the long-axis contours that cross it "
+                "(GPFile folders with LAX contours), else so the contours' centroids follow a smooth long axis (a "
+                "robust fit; each slice's move is listed in report.json \"slice_alignment\")");
   app->add_flag("--strict", o.strict,
                 "refuse flawed contours (open arcs, loops, spikes, too few points, two slice ids on one plane) with "
                 "their exit codes instead of repairing them (the default repairs each and lists it in the report)");

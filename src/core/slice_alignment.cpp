@@ -12,6 +12,8 @@
 
 #include <Eigen/Dense>
 
+#include "slice_alignment_internal.h"
+
 namespace c4d {
 
 namespace {
@@ -196,6 +198,10 @@ std::vector<Vec2> robust_axis(const std::vector<SliceCentroid>& c, int degree, c
   return out;
 }
 
+}  // namespace
+
+namespace detail {
+
 void move_slice(Sequence& seq, int id, Vec3 shift) {
   for (Frame& f : seq.frames)
     for (Slice& s : f.slices)
@@ -204,10 +210,11 @@ void move_slice(Sequence& seq, int id, Vec3 shift) {
           for (Vec3& p : c.points) p = p + shift;
 }
 
-}  // namespace
+}  // namespace detail
 
 SliceAlignment align_slices(Sequence& seq, const SliceAlignmentOptions& options) {
   SliceAlignment out;
+  out.method = "centroid-axis";
   out.label = options.label.empty() ? most_common_label(seq) : options.label;
   const std::vector<SliceCentroid> c = mean_centroids(seq, out.label);
   const int n = static_cast<int>(c.size());
@@ -228,7 +235,7 @@ SliceAlignment align_slices(Sequence& seq, const SliceAlignmentOptions& options)
     s.shift = seq.u * d.x + seq.v * d.y;
     s.shift_mm = std::hypot(d.x, d.y);
     s.weight = weights[k];
-    move_slice(seq, s.slice, s.shift);
+    detail::move_slice(seq, s.slice, s.shift);
     out.shifts.push_back(s);
   }
   return out;

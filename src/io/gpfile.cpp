@@ -252,7 +252,16 @@ struct FramePoints {
   std::vector<std::vector<GuidePoint>> points;  // per frame: wanted types and the septum
   std::set<std::string> present_types;          // every contour type seen
   std::map<int, int> count_by_slice;            // wanted points per slice, all frames
+  std::vector<GuideCurve> long_axis;            // every LAX_* contour, one per (frame, slice, type)
 };
+
+// A long-axis point goes to its frame's curve of the same slice and type (points in file order).
+void add_long_axis_point(const GuidePoint& g, std::size_t frame,
+                         std::map<std::pair<int, std::string>, std::size_t>& index, std::vector<GuideCurve>& curves) {
+  const auto [it, added] = index.try_emplace({g.slice, g.type}, curves.size());
+  if (added) curves.push_back({static_cast<int>(frame), g.slice, gpfile_label(g.type), {}});
+  curves[it->second].points.push_back(g.p);
+}
 
 // Reads every frame; keeps the wanted types (and the septum, to close the epicardium). Throws on a
 // kept point whose slice is not in SliceInfoFile.txt.
@@ -262,8 +271,10 @@ FramePoints read_frames(const std::vector<std::string>& frames, const std::vecto
   FramePoints fp;
   fp.points.resize(frames.size());
   for (std::size_t f = 0; f < frames.size(); ++f) {
+    std::map<std::pair<int, std::string>, std::size_t> long_axis_index;
     for (GuidePoint& g : parse_frame(frames[f], files[f])) {
       fp.present_types.insert(g.type);
+      if (g.type.rfind("LAX_", 0) == 0) add_long_axis_point(g, f, long_axis_index, fp.long_axis);
       const bool keep = wanted.count(g.type) || (want_epi && g.type == "SAX_RV_SEPTUM");
       if (!keep) continue;
       if (!info.count(g.slice))
@@ -537,7 +548,7 @@ GpFileResult parse_gpfile_texts(const std::vector<std::string>& frames, const st
   std::vector<std::string> types = options.contour_types;
   if (types.empty()) types = {"SAX_LV_ENDOCARDIAL"};
   const std::set<std::string> wanted(types.begin(), types.end());
-  const FramePoints fp = read_frames(frames, files, info, wanted);
+  FramePoints fp = read_frames(frames, files, info, wanted);
   check_types_present(types, fp.present_types, folder);
 
   // Short-axis selection: the largest group of mutually parallel image planes among the slices
@@ -557,6 +568,7 @@ GpFileResult parse_gpfile_texts(const std::vector<std::string>& frames, const st
   result.sequence = build_in_files(raw, files, source, options.stack);
   result.sequence.space = "LPS";
   add_notes(result, types, fp.count_by_slice, stats, frames.size());
+  result.long_axis = std::move(fp.long_axis);
   return result;
 }
 

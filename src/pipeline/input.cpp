@@ -183,6 +183,7 @@ InputResult read_any(const fs::path& input, const InputOptions& options) {
     result.format = "gpfile";
     result.notes = std::move(r.notes);
     result.pixel_mm = mean_pixel_mm(r);
+    result.long_axis = std::move(r.long_axis);
   } else if (fs::is_regular_file(input, ec) && is_dicom_input(input)) {
     return read_rtstruct_input(input, options, space);  // the label was chosen on reading
   } else if (lower_extension(input) == ".json") {
@@ -263,17 +264,32 @@ void smooth_traced_contours(InputResult& r, const InputOptions& o) {
       r.smoothing_tolerance_mm, r.smoothing_source, worst));
 }
 
-// Breath-hold shifts undone on request (slice_alignment.h), said in the notes.
+// Breath-hold shifts undone on request (slice_alignment.h), said in the notes: onto the long-axis contours where
+// the input has them, else onto the centroids' axis.
 void align_slices_on_request(InputResult& r, const InputOptions& o) {
   if (!o.align_slices) return;
   r.aligned = true;
-  r.alignment = align_slices(r.sequence);
-  if (r.alignment.degree < 0) {
+  r.alignment = align_slices_to_curves(r.sequence, r.long_axis);
+  if (r.alignment.shifts.empty() || r.alignment.degree < 0) {
     r.notes.push_back("--align-slices: fewer than four slices hold " + r.alignment.label + "; nothing moved");
     return;
   }
   const auto worst = std::max_element(r.alignment.shifts.begin(), r.alignment.shifts.end(),
                                       [](const SliceShift& a, const SliceShift& b) { return a.shift_mm < b.shift_mm; });
+  if (r.alignment.method == "long-axis") {
+    int crossings = 0, still = 0;
+    for (const SliceShift& s : r.alignment.shifts) {
+      crossings += s.crossings;
+      still += s.weight == 0.0;
+    }
+    r.notes.push_back(
+        fmt::format("slices aligned in plane onto the long-axis contours that cross them ({}: {} "
+                    "crossings): {} slices, moved at most {:.2f} mm (slice {}){}; see report.json "
+                    "\"slice_alignment\"",
+                    r.alignment.label, crossings, r.alignment.shifts.size(), worst->shift_mm, worst->slice,
+                    still ? fmt::format(", {} left in place (too few crossings)", still) : ""));
+    return;
+  }
   r.notes.push_back(
       fmt::format("slices aligned in plane on the {} centroids' axis (degree {}): {} slices, moved at "
                   "most {:.2f} mm (slice {}); see report.json \"slice_alignment\"",

@@ -84,8 +84,16 @@ Json alignment_json(const InputResult& read) {
                       {"shift_mm", {s.shift.x, s.shift.y, s.shift.z}},
                       {"length_mm", s.shift_mm},
                       {"fit_weight", s.weight}});
-  return {
-      {"applied", true}, {"label", read.alignment.label}, {"axis_degree", read.alignment.degree}, {"slices", shifts}};
+  if (read.alignment.method == "long-axis")
+    for (std::size_t k = 0; k < shifts.size(); ++k) {
+      shifts[k]["crossings"] = read.alignment.shifts[k].crossings;
+      shifts[k]["median_residual_mm"] = read.alignment.shifts[k].residual_mm;
+    }
+  return {{"applied", true},
+          {"method", read.alignment.method},
+          {"label", read.alignment.label},
+          {"axis_degree", read.alignment.degree},
+          {"slices", shifts}};
 }
 
 Json surface_json(const SurfaceReport& r) {

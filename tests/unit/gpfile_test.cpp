@@ -85,6 +85,21 @@ TEST(GpFile, LongAxisSlicesAreSkippedWithANote) {
   EXPECT_TRUE(noted);
 }
 
+// Every long-axis contour is kept for --align-slices, whatever the chosen types: one curve per frame, view and
+// type, in file order (patient 1: 3 views of the LV endocardium per frame, with 69, 66 and 73 points in frame 0, as they come in its file).
+TEST(GpFile, Patient1LongAxisContoursAreKeptForAlignment) {
+  const GpFileResult r = read_gpfile(patient_dir());
+  std::vector<std::size_t> endo0;
+  std::set<int> frames;
+  for (const GuideCurve& c : r.long_axis) {
+    EXPECT_EQ(c.label.rfind("lax-", 0), 0u) << c.label;
+    frames.insert(c.frame);
+    if (c.frame == 0 && c.label == "lax-lv-endo") endo0.push_back(c.points.size());
+  }
+  EXPECT_EQ(frames.size(), 25u);
+  EXPECT_EQ(endo0, (std::vector<std::size_t>{69, 66, 73}));
+}
+
 // The RV endocardium: each slice's free wall and septum arcs joined into one closed contour, whose points are
 // the free wall's and (nearly all of) the septum's, on every frame and slice that has both.
 TEST(GpFile, Patient1RvFreeWallAndSeptumJoined) {

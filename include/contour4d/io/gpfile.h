@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "contour4d/core/contour_repair.h"
+#include "contour4d/core/slice_alignment.h"
 #include "contour4d/core/stack.h"
 
 namespace c4d {
@@ -45,6 +46,8 @@ struct GpFileResult {
   std::vector<std::string> frame_files;  //!< file name of each frame
   std::vector<std::string> notes;        //!< human-readable lines: what was used, skipped, closed
   std::vector<ContourRepair> repairs;    //!< flaws fixed (GpFileOptions::repair)
+  std::vector<GuideCurve> long_axis;     //!< every LAX_* contour (whatever the chosen types), one per frame, slice
+                                         //!< and type, labelled by gpfile_label (lax-lv-endo): for --align-slices
 };
 
 //! User-facing label of a biv-me contour type: lower case, '-' for '_', "SAX_" dropped,

@@ -35,6 +35,8 @@ struct InputResult {
   std::vector<SliceGap> slices_in_some_frames;  //!< slices missing from some frames (by slice id)
   bool aligned = false;                         //!< the slices were moved in plane (InputOptions::align_slices)
   SliceAlignment alignment;                     //!< how far each slice moved (when `aligned`)
+  std::vector<GuideCurve> long_axis;            //!< long-axis contours crossing the slices (GPFile folders), which
+                                                //!< pin each slice for --align-slices
 };
 
 }  // namespace c4d
