@@ -5,6 +5,7 @@
 #include "contour4d/core/slice_alignment.h"
 
 #include <cmath>
+#include <algorithm>
 #include <functional>
 #include <numbers>
 #include <random>
@@ -245,6 +246,40 @@ TEST(SliceAlignmentOnLongAxis, OneViewMovesNothingAndNoViewFallsBack) {
   const SliceAlignment fallback = align_slices_to_curves(s.seq, other);
   EXPECT_EQ(fallback.method, "centroid-axis");
   EXPECT_GT(fallback.shifts[4].shift_mm, 2.0);
+}
+
+// The moves do not depend on where the study lies (a rotation about the stack normal and a translation of the
+// contours and the views together), nor on the order of the views.
+TEST(SliceAlignmentOnLongAxis, IndependentOfRigidMotionAndViewOrder) {
+  std::mt19937 rng(9);
+  Stack s = bent_stack(rng, 7, 3);
+  shift_slice(s.seq, 2, s.seq.v * 2.5 - s.seq.u * 1.5);
+  const double step = 2 * std::numbers::pi / 48;
+  const std::vector<GuideCurve> curves = long_axis_views(s, {5 * step, 21 * step});
+  const double th = 0.7;
+  const Vec3 u2 = s.seq.u * std::cos(th) + s.seq.v * std::sin(th), v2 = s.seq.v * std::cos(th) - s.seq.u * std::sin(th);
+  const auto turn = [&](Vec3 p) {
+    return u2 * dot(p, s.seq.u) + v2 * dot(p, s.seq.v) + s.seq.normal * dot(p, s.seq.normal) + Vec3{5, -3, 2};
+  };
+  Sequence moved = s.seq;
+  for (Frame& f : moved.frames)
+    for (Slice& sl : f.slices) {
+      sl.offset += dot(Vec3{5, -3, 2}, s.seq.normal);
+      for (Contour& c : sl.contours)
+        for (Vec3& p : c.points) p = turn(p);
+    }
+  std::vector<GuideCurve> moved_curves = curves;
+  for (GuideCurve& c : moved_curves)
+    for (Vec3& p : c.points) p = turn(p);
+  std::reverse(moved_curves.begin(), moved_curves.end());
+  Sequence a = s.seq;
+  const SliceAlignment ra = align_slices_to_curves(a, curves), rb = align_slices_to_curves(moved, moved_curves);
+  ASSERT_EQ(ra.shifts.size(), rb.shifts.size());
+  for (std::size_t i = 0; i < ra.shifts.size(); ++i) {
+    EXPECT_NEAR(ra.shifts[i].shift_mm, rb.shifts[i].shift_mm, 1e-6) << "slice " << ra.shifts[i].slice;
+    EXPECT_EQ(ra.shifts[i].crossings, rb.shifts[i].crossings);
+  }
+  EXPECT_GT(ra.shifts[2].shift_mm, 2.5);
 }
 
 }  // namespace
