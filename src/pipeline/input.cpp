@@ -287,7 +287,7 @@ void align_slices_on_request(InputResult& r, const InputOptions& o) {
                     "crossings): {} slices, moved at most {:.2f} mm (slice {}){}; see report.json "
                     "\"slice_alignment\"",
                     r.alignment.label, crossings, r.alignment.shifts.size(), worst->shift_mm, worst->slice,
-                    still ? fmt::format(", {} left in place (too few crossings)", still) : ""));
+                    still ? fmt::format(", {} left in place (too few crossings, or from one view only)", still) : ""));
     return;
   }
   r.notes.push_back(
