@@ -72,6 +72,22 @@ void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, 
                            seconds, a.output);
 }
 
+// Each structure read again with its own label, so that it comes out exactly as `--label NAME` makes it (the
+// stack's axes are fitted on the contours read, and a knife-edge choice downstream can follow their last bit).
+// The wall (made from two labels) and a structure missing from some frames keep the split's contours.
+void read_each_on_its_own(const ReconstructArgs& a, std::vector<Structure>& structures) {
+  for (Structure& s : structures) {
+    if (s.wall) continue;
+    InputOptions own = a.in;
+    own.label = s.name;
+    try {
+      InputResult r = read_contours(a.input, own);
+      if (r.sequence.frames.size() == s.frames.size()) s.input = std::move(r);
+    } catch (const Error&) {  // as split (structures.h) made it
+    }
+  }
+}
+
 // Several structures (--label all, or --label given more than once): each into OUTDIR/<label>/.
 int run_structures(const ReconstructArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -81,7 +97,8 @@ int run_structures(const ReconstructArgs& a) {
   const InputResult read = read_contours(a.input, in);
   OutputDir out(a.output);
   print_input_summary(a, read);
-  const std::vector<Structure> structures = split_structures(read, a.labels);
+  std::vector<Structure> structures = split_structures(read, a.labels);
+  read_each_on_its_own(a, structures);
   std::vector<std::string> notes;
   for (const Structure& s : structures)
     for (const std::string& n : s.input.notes) {

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <fstream>
+#include <iterator>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -152,7 +153,8 @@ TEST(Cli, InterruptLeavesNoStagingFolder) {
 }
 
 // Every structure in one run: Sunnybrook's endocardium and epicardium, and the wall between them (the
-// myocardium), each into OUTDIR/<label>/ with one combined report holding the wall's mass.
+// myocardium), each into OUTDIR/<label>/ with one combined report holding the wall's mass; a structure comes out
+// byte for byte as it does alone (--label lv-endo).
 TEST(Cli, EveryStructureInOneRun) {
   const std::string dir = ::testing::TempDir() + "c4d-cli-all";
   std::filesystem::remove_all(dir);
@@ -182,6 +184,17 @@ TEST(Cli, EveryStructureInOneRun) {
   std::ifstream wf(dir + "/wall/report.json");
   const nlohmann::ordered_json wr = nlohmann::ordered_json::parse(wf);
   EXPECT_EQ(wr["summary"]["mass_g"].size(), wr["summary"]["volume_ml"].size());
+  // The endocardium alone: the same bytes as in the run of every structure.
+  ASSERT_EQ(run("reconstruct " + sb + " --label lv-endo --threads 2 -o " + dir + "/endo").code, 0);
+  const auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* frame : {"frame_000.vtp", "frame_001.vtp"}) {
+    const std::string alone = bytes(dir + "/endo/frames/" + frame);
+    EXPECT_FALSE(alone.empty()) << frame;
+    EXPECT_TRUE(alone == bytes(dir + "/out/lv-endo/frames/" + frame)) << frame << " differs from --label all's";
+  }
   // A structure the input does not hold: refused before any work, nothing written.
   const Result bad = run("reconstruct " + sb + " --label lv-endo --label rv -o " + dir + "/bad");
   EXPECT_EQ(bad.code, 21) << bad.out;
