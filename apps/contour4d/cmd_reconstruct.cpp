@@ -74,8 +74,10 @@ void print_result_summary(const ReconstructArgs& a, const MeshSequence& result, 
 
 // Each structure read again with its own label, so that it comes out exactly as `--label NAME` makes it (the
 // stack's axes are fitted on the contours read, and a knife-edge choice downstream can follow their last bit).
-// The wall (made from two labels) and a structure missing from some frames keep the split's contours.
+// The wall (made from two labels) and a structure missing from some frames keep the split's contours, and so does
+// every structure with --align-slices: one alignment for all of them, so that the wall's slices are the others'.
 void read_each_on_its_own(const ReconstructArgs& a, std::vector<Structure>& structures) {
+  if (a.in.align_slices) return;
   for (Structure& s : structures) {
     if (s.wall) continue;
     InputOptions own = a.in;

@@ -28,8 +28,9 @@ struct InputOptions {
   double contour_tolerance_mm = -1.0;      //!< how far smoothing may move a contour (mm): negative: half the pixel
                                            //!< size of the images they were traced on (GPFile, Sunnybrook; inputs
                                            //!< without one are exact); 0: exact, not smoothed (--exact-contours)
-  bool align_slices = false;               //!< move each slice in its plane so the contours' centroids follow a
-                                           //!< smooth long axis (breath-hold shifts; slice_alignment.h)
+  bool align_slices = false;               //!< move each slice in its plane onto the long-axis contours that cross
+                                           //!< it, else so the contours' centroids follow a smooth long axis
+                                           //!< (breath-hold shifts; slice_alignment.h)
   bool strict = false;                     //!< refuse flawed contours (exit codes 15, 16, 19) instead of repairing
                                            //!< them (contour_repair.h; contour JSON and GPFile folders), and leave
                                            //!< contours missing from some frames out (contour_gaps.h)
