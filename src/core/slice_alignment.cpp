@@ -91,13 +91,6 @@ std::vector<SliceCentroid> mean_centroids(const Sequence& seq, const std::string
   return out;
 }
 
-constexpr double kMadToSigma = 1.4826;  // a median absolute residual times this: the normal law's σ
-
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
 // The design matrix (powers of the offset mapped to [−1, 1]) and the centroids.
 void design(const std::vector<SliceCentroid>& c, int degree, Eigen::MatrixXd& A, Eigen::MatrixXd& Y) {
   const Eigen::Index n = static_cast<Eigen::Index>(c.size()), m = degree + 1;
@@ -165,7 +158,7 @@ Eigen::VectorXd robust_start(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Y)
     if (r[h - 1] < best) best = r[h - 1], best_fit = fit;
   }
   const std::vector<double> r = residuals(Y, best_fit);
-  const double scale = std::max(kMadToSigma * best, 1e-9);
+  const double scale = std::max(detail::kMadToSigma * best, 1e-9);
   Eigen::VectorXd w(n);
   for (Eigen::Index i = 0; i < n; ++i) w(i) = r[static_cast<std::size_t>(i)] <= 2.5 * scale + 0.5 ? 1.0 : 0.0;
   return w;
@@ -185,12 +178,8 @@ std::vector<Vec2> robust_axis(const std::vector<SliceCentroid>& c, int degree, c
     if (w.count() <= m) w.setOnes();  // too few slices trusted to define the axis: plain least squares
     fit = weighted_fit(A, Y, w);
     const std::vector<double> r = residuals(Y, fit);
-    const double scale = std::max(o.min_scale_mm, kMadToSigma * median(r));
-    constexpr double kTukey = 4.685;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double z = r[static_cast<std::size_t>(i)] / (kTukey * scale);
-      w(i) = z < 1 ? (1 - z * z) * (1 - z * z) : 0.0;
-    }
+    const double scale = std::max(o.min_scale_mm, detail::kMadToSigma * detail::median(r));
+    for (Eigen::Index i = 0; i < n; ++i) w(i) = detail::tukey_weight(r[static_cast<std::size_t>(i)], scale);
   }
   weights.assign(w.data(), w.data() + n);
   std::vector<Vec2> out(static_cast<std::size_t>(n));
@@ -201,6 +190,17 @@ std::vector<Vec2> robust_axis(const std::vector<SliceCentroid>& c, int degree, c
 }  // namespace
 
 namespace detail {
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+double tukey_weight(double r, double sigma) {
+  constexpr double kTukey = 4.685;  // the bisquare's cut-off in σ
+  const double z = r / (kTukey * sigma);
+  return z < 1 ? (1 - z * z) * (1 - z * z) : 0.0;
+}
 
 void move_slice(Sequence& seq, int id, Vec3 shift) {
   for (Frame& f : seq.frames)

@@ -16,8 +16,6 @@
 namespace c4d {
 namespace {
 
-constexpr double kMadToSigma = 1.4826;     // a median absolute residual times this: the normal law's σ
-constexpr double kTukey = 4.685;           // bisquare cut-off in σ
 constexpr int kMinCrossings = 4;           // fewer crossings than this: the slice is not moved
 constexpr double kMinTrusted = 3.0;        // nor where their weights add up to less than this
 constexpr double kMinConditioning = 0.05;  // smallest / largest eigenvalue of the move's normal matrix
@@ -39,11 +37,6 @@ struct SliceData {
 };
 
 Vec2 in_plane(const Sequence& seq, Vec3 p) { return {dot(p, seq.u), dot(p, seq.v)}; }
-
-double median_of(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
 
 // The labels of `seq` with curves "lax-" + label (only options.label when set), sorted.
 std::vector<std::string> labels_with_curves(const Sequence& seq, const std::vector<GuideCurve>& curves,
@@ -84,7 +77,7 @@ std::vector<Vec3> plane_crossings(const GuideCurve& curve, Vec3 normal, double o
   if (p.size() < 2) return out;
   std::vector<double> steps;
   for (std::size_t i = 0; i + 1 < p.size(); ++i) steps.push_back(distance(p[i], p[i + 1]));
-  const double gap = kGapSteps * median_of(steps);
+  const double gap = kGapSteps * detail::median(steps);
   for (std::size_t i = 0; i + 1 < p.size(); ++i) {
     const double a = dot(p[i], normal) - offset, b = dot(p[i + 1], normal) - offset;
     if ((a < 0) == (b < 0) || a == b || steps[i] > gap) continue;
@@ -136,10 +129,10 @@ SliceMove fit_move(const std::vector<Crossing>& crossings, double min_scale) {
       len[i] = norm(r);
       dir[i] = len[i] > 0 ? r * (1.0 / len[i]) : Vec2{0, 0};
     }
-    const double scale = std::max(min_scale, kMadToSigma * median_of(len));
+    const double scale = std::max(min_scale, detail::kMadToSigma * detail::median(len));
     double m00 = 0, m01 = 0, m11 = 0, b0 = 0, b1 = 0, trusted = 0;
     for (std::size_t i = 0; i < crossings.size(); ++i) {
-      const double z = len[i] / (kTukey * scale), w = z < 1 ? (1 - z * z) * (1 - z * z) : 0.0;
+      const double w = detail::tukey_weight(len[i], scale);
       m00 += w * dir[i].x * dir[i].x;
       m01 += w * dir[i].x * dir[i].y;
       m11 += w * dir[i].y * dir[i].y;
@@ -160,7 +153,7 @@ SliceMove fit_move(const std::vector<Crossing>& crossings, double min_scale) {
   }
   out.t = t;
   out.moved = true;
-  out.residual = median_of(len);
+  out.residual = detail::median(len);
   return out;
 }
 

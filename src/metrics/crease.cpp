@@ -26,8 +26,8 @@ std::vector<int> plane_of_vertices(const TriangleMesh& mesh, Vec3 normal, const 
   return plane;
 }
 
-Vec3 facet_normal(const TriangleMesh& m, const Triangle& t) {
-  return normalized(cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]));
+Vec3 facet_normal(const std::vector<Vec3>& x, const Triangle& t) {
+  return normalized(cross(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]));
 }
 
 double p95(std::vector<double>& a) {
@@ -56,8 +56,8 @@ void for_each_interior_edge(const TriangleMesh& mesh, const Visit& visit) {
     std::size_t j = i;
     while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
     if (j - i == 2) {
-      const double angle = metrics_internal::angle_deg(facet_normal(mesh, mesh.triangles[edges[i][2]]),
-                                                       facet_normal(mesh, mesh.triangles[edges[i + 1][2]]));
+      const double angle = metrics_internal::angle_deg(facet_normal(mesh.positions, mesh.triangles[edges[i][2]]),
+                                                       facet_normal(mesh.positions, mesh.triangles[edges[i + 1][2]]));
       if (std::isfinite(angle)) visit(edges[i][0], edges[i][1], angle, edges[i][2], edges[i + 1][2]);
     }
     i = j;
@@ -103,12 +103,10 @@ std::vector<std::array<std::uint32_t, 2>> neighbour_pairs(const TriangleMesh& me
 
 Fold sharpest_fold(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
                    const std::vector<std::array<std::uint32_t, 2>>& pairs) {
-  const auto normal = [&](const Triangle& t) {
-    return normalized(cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]));
-  };
   Fold fold;
   for (const auto& [t0, t1] : pairs) {
-    const double angle = metrics_internal::angle_deg(normal(triangles[t0]), normal(triangles[t1]));
+    const double angle =
+        metrics_internal::angle_deg(facet_normal(positions, triangles[t0]), facet_normal(positions, triangles[t1]));
     if (angle > fold.angle_deg) fold = {angle, t0, t1};
   }
   return fold;

@@ -270,7 +270,7 @@ void align_slices_on_request(InputResult& r, const InputOptions& o) {
   if (!o.align_slices) return;
   r.aligned = true;
   r.alignment = align_slices_to_curves(r.sequence, r.long_axis);
-  if (r.alignment.shifts.empty() || r.alignment.degree < 0) {
+  if (r.alignment.degree < 0) {
     r.notes.push_back("--align-slices: fewer than four slices hold " + r.alignment.label + "; nothing moved");
     return;
   }
