@@ -500,6 +500,7 @@ MeshSequence carry_frames(const Sequence& seq, const TriangleMesh& frame0,
     try {
       const FrameTargets& ft = targets[t];
       CarryFrameReport& fr = rep.frames[t];
+      fr.source = 0;
       fr.matched_contours = ft.matched;
       fr.unmatched_chains = ft.unmatched;
       fr.fixed_vertices = static_cast<std::size_t>(std::count(ft.fixed.begin(), ft.fixed.end(), 1));

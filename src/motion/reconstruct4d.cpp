@@ -185,15 +185,87 @@ std::map<int, TriangleMesh> own_surfaces(const Sequence& seq, const std::vector<
   return out;
 }
 
+// Frames `targets` carried from placed frame s (its positions in `out`) onto their own surfaces (carry.h), in
+// one carry that shares its thin-plate factorisations. A carried frame whose triangles cross or are squeezed
+// (more than 1 % with an angle below 25°, or less than 85 % of the angles in 40–80°) is carried again with
+// more smoothing rounds (kRetryRelaxRounds), then also with an end contour (the one that changed most against
+// the source first, then the other, then both) left out of the matching: a base contour that shrank to a
+// fraction of the source's folds or squeezes the band above it, while the part beyond the next slice laid
+// onto the frame's own dome (carry.h) keeps its shape. The first try that is good is kept, else the best
+// (fewest crossings, then fewest poor triangles, then the largest share in 40–80°). Returns each target's
+// result and shape, in the order of `targets`; `out` is not changed.
+struct CarriedFrame {
+  std::vector<Vec3> positions;
+  CarryFrameReport report;
+  CarriedShape shape;
+};
+
+using OwnSurface = std::function<const TriangleMesh&(int)>;  // frame t's own one-frame surface
+
+std::vector<CarriedFrame> carry_from(const Sequence& seq, const MeshSequence& out, int s,
+                                     const std::vector<int>& targets, const OwnSurface& own,
+                                     const Reconstruct4DOptions& options) {
+  const TriangleMesh from{out.positions[static_cast<std::size_t>(s)], out.triangles};
+  CarryOptions retry_options = options.carry;
+  retry_options.relax_rounds = std::max(retry_options.relax_rounds, kRetryRelaxRounds);
+  auto carry = [&](const std::vector<int>& to, int ends, const CarryOptions& co, CarryReport& cr) {
+    Sequence group = seq;
+    group.frames = {seq.frames[static_cast<std::size_t>(s)]};
+    for (int t : to) group.frames.push_back(without_ends(seq, seq.frames[static_cast<std::size_t>(t)], ends));
+    return carry_frames(
+        group, from, [&](std::size_t k) { return own(to[k - 1]); }, co, &cr);
+  };
+  CarryReport cr;
+  const MeshSequence carried = carry(targets, 0, options.carry, cr);
+  std::vector<CarriedFrame> result(targets.size());
+  // The frames tried again run in parallel: each writes its own result only.
+  tbb::parallel_for(std::size_t{0}, targets.size(), [&](std::size_t k) {
+    CarriedFrame best{carried.positions[k + 1], cr.frames[k + 1], {}};
+    best.report.source = s;
+    best.shape = carried_shape(TriangleMesh{best.positions, out.triangles});
+    for (int ends : retry_order(seq, s, targets[k])) {
+      if (best.shape.good()) break;
+      CarryReport again;
+      MeshSequence retry = carry({targets[k]}, ends, retry_options, again);
+      const CarriedShape other = carried_shape(TriangleMesh{retry.positions[1], out.triangles});
+      if (other < best.shape) {
+        best = {std::move(retry.positions[1]), again.frames[1], other};
+        best.report.source = s;
+      }
+    }
+    result[k] = std::move(best);
+  });
+  return result;
+}
+
+// The frames of `out` whose triangles cross (`shapes`; a frame not in it has none), each carried again from a
+// neighbour in the cycle that has no crossing (the next frame first, then the previous one), in increasing
+// frame order, the better result kept (CarriedShape's order): consecutive frames differ little, so the carry
+// from a neighbour folds less than the one that failed (from a rebuilt frame far away in the cycle, or the
+// morph's frame after frame). The other frames are not touched.
+void recarry_crossing_frames(const Sequence& seq, MeshSequence& out, const OwnSurface& own,
+                             const Reconstruct4DOptions& options, std::map<int, CarriedShape>& shapes,
+                             std::vector<CarryFrameReport>& reports) {
+  const auto n = static_cast<int>(seq.frames.size());
+  for (auto& [t, shape] : shapes) {
+    for (int s : {(t + 1) % n, (t + n - 1) % n}) {
+      if (shape.crossings == 0) break;
+      const auto found = shapes.find(s);
+      if (s == t || (found != shapes.end() && found->second.crossings > 0)) continue;
+      CarriedFrame again = std::move(carry_from(seq, out, s, {t}, own, options)[0]);
+      if (!(again.shape < shape)) continue;
+      shape = again.shape;
+      reports[static_cast<std::size_t>(t)] = again.report;
+      out.positions[static_cast<std::size_t>(t)] = std::move(again.positions);
+    }
+  }
+}
+
 // The frames that do not fit the plan (a contour that appears, vanishes, splits or merges) or folded on it:
 // the nearest rebuilt frame's mesh (in the cycle; the earlier one on a tie) carried onto each frame's own
-// surface (carry.h), one carry per source frame. A carried frame whose triangles cross or are squeezed (more
-// than 1 % with an angle below 25°, or less than 85 % of the angles in 40–80°) is carried again with more
-// smoothing rounds (kRetryRelaxRounds), then also with an end contour (the one that changed most against the
-// source first, then the other, then both) left out of the matching: a base contour that shrank to a fraction
-// of the source's folds or squeezes the band above it, while the part beyond the next slice laid onto the
-// frame's own dome (carry.h) keeps its shape. The first try that is good is kept, else the best (fewest
-// crossings, then fewest poor triangles, then the largest share in 40–80°).
+// surface (carry_from), one carry per source frame; a frame whose triangles still cross is carried again from
+// a neighbour (recarry_crossing_frames): biv-me's right ventricle in early diastole, its base contour half the
+// nearest rebuilt frame's, is carried from the frame after it, whose base is close to its own.
 void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options,
                  Reconstruct4DReport& rep) {
   const std::vector<int>& unfit = rep.rebuild.unfit;
@@ -211,48 +283,46 @@ void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOpti
     }
     return best;
   };
-  std::vector<int> source(unfit.size());
-  for (std::size_t k = 0; k < unfit.size(); ++k) source[k] = nearest_fit(unfit[k]);
-  // One carry per source frame: its frames share the thin-plate factorisations (carry.h), and run in parallel.
   std::map<int, std::vector<int>> by_source;
-  for (std::size_t k = 0; k < unfit.size(); ++k) by_source[source[k]].push_back(unfit[k]);
-  const std::map<int, TriangleMesh> own = own_surfaces(seq, unfit, options.surface);
-  CarryOptions retry_options = options.carry;
-  retry_options.relax_rounds = std::max(retry_options.relax_rounds, kRetryRelaxRounds);
-  for (const auto& group_of_source : by_source) {
-    const int s = group_of_source.first;
-    const std::vector<int>& targets = group_of_source.second;
-    const TriangleMesh from{out.positions[static_cast<std::size_t>(s)], out.triangles};
-    auto carry = [&](const std::vector<int>& to, int ends, const CarryOptions& co, CarryReport& cr) {
-      Sequence group = seq;
-      group.frames = {seq.frames[static_cast<std::size_t>(s)]};
-      for (int t : to) group.frames.push_back(without_ends(seq, seq.frames[static_cast<std::size_t>(t)], ends));
-      return carry_frames(
-          group, from, [&](std::size_t k) { return own.at(to[k - 1]); }, co, &cr);
-    };
-    CarryReport cr;
-    const MeshSequence carried = carry(targets, 0, options.carry, cr);
-    // The frames tried again run in parallel: each writes its own frame only.
-    tbb::parallel_for(std::size_t{0}, targets.size(), [&](std::size_t k) {
+  for (int t : unfit) by_source[nearest_fit(t)].push_back(t);
+  const std::map<int, TriangleMesh> built = own_surfaces(seq, unfit, options.surface);
+  const OwnSurface own = [&](int t) -> const TriangleMesh& { return built.at(t); };
+  std::map<int, CarriedShape> shapes;  // the carried frames'
+  for (const auto& [s, targets] : by_source) {
+    std::vector<CarriedFrame> carried = carry_from(seq, out, s, targets, own, options);
+    for (std::size_t k = 0; k < targets.size(); ++k) {
       const auto t = static_cast<std::size_t>(targets[k]);
-      std::vector<Vec3> best = carried.positions[k + 1];
-      CarryFrameReport best_report = cr.frames[k + 1];
-      CarriedShape shape = carried_shape(TriangleMesh{best, out.triangles});
-      for (int ends : retry_order(seq, s, targets[k])) {
-        if (shape.good()) break;
-        CarryReport again;
-        MeshSequence retry = carry({targets[k]}, ends, retry_options, again);
-        const CarriedShape other = carried_shape(TriangleMesh{retry.positions[1], out.triangles});
-        if (other < shape) {
-          shape = other;
-          best = std::move(retry.positions[1]);
-          best_report = again.frames[1];
-        }
-      }
-      out.positions[t] = std::move(best);
-      rep.carry.frames[t] = best_report;
-    });
+      rep.carry.frames[t] = carried[k].report;
+      shapes[targets[k]] = carried[k].shape;
+      out.positions[t] = std::move(carried[k].positions);
+    }
   }
+  recarry_crossing_frames(seq, out, own, options, shapes, rep.carry.frames);
+}
+
+// A whole sequence's frames whose triangles cross (a fold the morph or the carry from frame 0 could not undo),
+// carried again from a neighbour (recarry_crossing_frames) onto their own surfaces: `surfaces` where the morph
+// built them, else built here for those frames.
+void recarry_all(const Sequence& seq, MeshSequence& out, const std::vector<TriangleMesh>* surfaces,
+                 const Reconstruct4DOptions& options, Reconstruct4DReport& rep) {
+  const std::size_t n = out.positions.size();
+  std::vector<CarriedShape> all(n);
+  tbb::parallel_for(std::size_t{1}, std::max<std::size_t>(1, n),
+                    [&](std::size_t t) { all[t] = carried_shape(out.frame(t)); });
+  std::map<int, CarriedShape> shapes;
+  std::vector<int> crossing;
+  for (std::size_t t = 1; t < n; ++t) {
+    shapes[static_cast<int>(t)] = all[t];
+    if (all[t].crossings > 0) crossing.push_back(static_cast<int>(t));
+  }
+  if (crossing.empty()) return;
+  rep.carry.frames.resize(n);
+  std::map<int, TriangleMesh> built;
+  if (!surfaces) built = own_surfaces(seq, crossing, options.surface);
+  const OwnSurface own = [&](int t) -> const TriangleMesh& {
+    return surfaces ? (*surfaces)[static_cast<std::size_t>(t)] : built.at(t);
+  };
+  recarry_crossing_frames(seq, out, own, options, shapes, rep.carry.frames);
 }
 
 }  // namespace
@@ -301,7 +371,9 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   };
   if (options.all_frames == AllFramesMethod::Carry) {
     rep.used = AllFramesMethod::Carry;
-    return carry_4d(seq, options, rep, build);
+    MeshSequence out = carry_4d(seq, options, rep, build);
+    recarry_all(seq, out, nullptr, options, rep);
+    return out;
   }
   rep.used = AllFramesMethod::Morph;
   // The surfaces are built by tasks that take the frames in increasing order, while this thread morphs
@@ -372,6 +444,7 @@ MeshSequence reconstruct_4d(const Sequence& seq, const Reconstruct4DOptions& opt
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
   if (morph_error) std::rethrow_exception(morph_error);
+  if (options.morph.method == MorphMethod::RbfProject) recarry_all(seq, out, &surfaces, options, rep);
   if (options.progress && n > 1) options.progress("frames", static_cast<int>(n) - 1, static_cast<int>(n) - 1);
   return out;
 }

@@ -39,6 +39,7 @@ struct CarryOptions {
 
 //! Per-frame figures of carry_frames.
 struct CarryFrameReport {
+  int source = -1;                 //!< the frame carried from (-1: not carried; carry_frames: 0)
   int matched_contours = 0;        //!< frame-0 chains matched one-to-one to this frame's contours
   int unmatched_chains = 0;        //!< chains without a partner (their contour split, merged or vanished)
   std::size_t fixed_vertices = 0;  //!< chain vertices put on this frame's contours
