@@ -13,7 +13,7 @@ namespace c4d {
 //! Thresholds of the shuffled-vertex test (see docs/evaluate.md for the reasoning).
 struct CorrespondenceOptions {
   double suspicious_median_change_pct = 50.0;  //!< flag a frame whose median edge-length change exceeds this (%)
-  double jump_factor = 4.0;                    //!< an edge "jumps" when its length changes by more than this factor
+  double jump_factor = 4.0;                    //!< an edge "jumps" when it grows longer than this factor
   double suspicious_jump_pct = 1.0;            //!< flag a frame where more than this % of edges jump
 };
 
@@ -24,7 +24,7 @@ struct CorrespondenceReport {
   int first_differing_frame = -1;              //!< first frame that differs from frame 0 (-1: none)
   std::string difference;                      //!< how it differs, in words
   std::vector<double> median_edge_change_pct;  //!< per frame: median |l − l_ref| / l_ref over edges (%)
-  std::vector<double> edge_jump_pct;           //!< per frame: % of edges whose length changed by > jump_factor
+  std::vector<double> edge_jump_pct;           //!< per frame: % of edges grown longer than jump_factor
   std::vector<int> suspicious_frames;          //!< frames whose vertices look permuted
   std::vector<std::string> faults;             //!< one sentence per fault
 
