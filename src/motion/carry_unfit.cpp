@@ -67,10 +67,16 @@ struct CarriedShape {
   }
 };
 
-CarriedShape carried_shape(const TriangleMesh& m) {
+// A frame with no triangle angle below this is taken as free of crossings without the (costly) exact test, as
+// the untangling does (angle_repair.h): crossing triangles come from crowded, folded patches, which have slivers.
+constexpr double kSliverDeg = 15.0;
+
+// `m`'s shape; with `slivers_only`, the crossings are counted only where some angle is below kSliverDeg.
+CarriedShape carried_shape(const TriangleMesh& m, bool slivers_only = false) {
   const TopologyOptions exact{.self_intersections = true, .counts_only = true};
   const AngleQuality q = angle_quality(m);
-  return {check_topology(m, exact).self_intersections, q.bad_triangles, m.triangles.size(), q.pct_40_80};
+  const bool test = !slivers_only || q.min_angle_deg < kSliverDeg;
+  return {test ? check_topology(m, exact).self_intersections : 0, q.bad_triangles, m.triangles.size(), q.pct_40_80};
 }
 
 // The end contours of frame t (the lowest and highest slice along the stack, as without_ends counts them) and how
@@ -255,7 +261,7 @@ void recarry_all(const Sequence& seq, MeshSequence& out, const std::vector<Trian
   const std::size_t n = out.positions.size();
   std::vector<CarriedShape> all(n);
   tbb::parallel_for(std::size_t{1}, std::max<std::size_t>(1, n),
-                    [&](std::size_t t) { all[t] = carried_shape(out.frame(t)); });
+                    [&](std::size_t t) { all[t] = carried_shape(out.frame(t), true); });
   std::map<int, CarriedShape> shapes;
   std::vector<int> crossing;
   for (std::size_t t = 1; t < n; ++t) {

@@ -15,7 +15,8 @@ namespace c4d::detail {
 // (recarry_all's rule). Fills rep.carry.frames for them (rep.carry.frames has one entry per frame).
 void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options, Reconstruct4DReport& rep);
 
-// Every frame t ≥ 1 of `out` whose triangles cross, in increasing order, carried again from its neighbour in the
+// Every frame t ≥ 1 of `out` whose triangles cross (tested where some angle is below 15°, as the untangling
+// does), in increasing order, carried again from its neighbour in the
 // cycle that has none (t + 1 first, then t − 1) onto its own surface (`surfaces` when given, one per frame, else
 // built with options.surface), the result kept when it has fewer crossings (then fewer triangles below 25°, then
 // a larger share of angles in 40–80°). Other frames are not touched; rep.carry.frames[t].source names the
