@@ -288,26 +288,36 @@ void morph_instead(const ReconstructRunOptions& a, const Sequence& seq, const Re
   report["all_frames"]["method"] = "morph";
 }
 
-// The default morph failed its checks: it can fold a frame onto a neighbouring sheet (a myocardium's two
-// walls). Every frame is then carried from frame 0 on its own, and that result replaces the morph's if it
-// passes the checks.
+// The default morph failed its checks (`failed` "the frame-after-frame morph"), or the frames on one mesh
+// failed theirs on a shell: the morph can fold a frame onto a neighbouring sheet (a myocardium's two walls).
+// Every frame is then carried from frame 0 on its own, and that result replaces the failed one if it passes the
+// checks.
 void carry_instead(const ReconstructRunOptions& a, const Sequence& seq, const Reconstruct4DOptions& opt, bool closed,
-                   ReconstructRun& run, Reconstruct4DReport& rr, Json& report, const RunMessage& say) {
+                   ReconstructRun& run, Reconstruct4DReport& rr, Json& report, const RunMessage& say,
+                   const std::string& failed) {
   if (say)
-    say(fmt::format("  the frame-after-frame morph failed its checks ({}); carrying every frame from frame 0 instead",
+    say(fmt::format("  {} failed its checks ({}); carrying every frame from frame 0 instead", failed,
                     run.check.summary()));
   Reconstruct4DOptions carry = opt;
   carry.all_frames = AllFramesMethod::Carry;
   Reconstruct4DReport rc;
   MeshSequence other = reconstruct_4d(seq, carry, &rc);
   ResultCheck other_check = run_checks(a, seq, opt.surface.label, closed, other);
-  report["all_frames_fallback"] = {{"morph_fault", run.check.summary()}, {"carry_ok", other_check.ok()}};
+  report["all_frames_fallback"] = {{"failed", failed}, {"fault", run.check.summary()}, {"carry_ok", other_check.ok()}};
   if (!other_check.ok()) return;
+  if (rr.used == AllFramesMethod::Rebuild) rc.rebuild = rr.rebuild;
   run.result = std::move(other);
   rr = std::move(rc);
   run.check = std::move(other_check);
   report["options"]["method"] = "carry";
   report["all_frames"]["method"] = "carry";
+}
+
+// Whether some slice holds a contour inside another (a myocardial wall: its outer contours enclose more than
+// the wall's own discs).
+bool is_shell(const ResultCheck& check) {
+  return std::any_of(check.frames.begin(), check.frames.end(),
+                     [](const FrameCheck& f) { return f.simpson_outer_volume > f.simpson_volume; });
 }
 
 const char* all_frames_name(AllFramesMethod m) {
@@ -384,9 +394,15 @@ void all_frames(const ReconstructRunOptions& a, const Sequence& seq, const Recon
   report["all_frames"]["carried_frames"] = carried;
   if (say && rr.used != AllFramesMethod::Rebuild && a.method == "auto")
     say(fmt::format("  every frame on one mesh is not possible ({}): frame after frame instead", rr.rebuild.why_not));
+  bool carried_first = false;  // every frame carried from frame 0 before the morph was tried
   if (rr.used == AllFramesMethod::Rebuild && a.method == "auto") {
     if (!run.check.ok()) {
-      morph_instead(a, seq, opt, closed, run, rr, report, say, "failed their checks (" + run.check.summary() + ")");
+      // On a shell the carry from frame 0 goes first: it lands every vertex on its own sheet, where the morph
+      // folds onto the other (biv-me's wall: the morph ran 16 min and failed, the carry passed in 2 min).
+      carried_first = is_shell(run.check);
+      if (carried_first) carry_instead(a, seq, opt, closed, run, rr, report, say, "every frame on one mesh");
+      if (!run.check.ok())
+        morph_instead(a, seq, opt, closed, run, rr, report, say, "failed their checks (" + run.check.summary() + ")");
     } else if (!rr.rebuild.unfit.empty()) {
       const auto [share, smallest] = worst_angles(run.result);
       if (share < kCarriedMinShare4080 || smallest < kCarriedMinAngleDeg)
@@ -397,7 +413,8 @@ void all_frames(const ReconstructRunOptions& a, const Sequence& seq, const Recon
     }
   }
   const bool morphed = rr.used == AllFramesMethod::Morph && (a.method == "rbf-project" || a.method == "auto");
-  if (!run.check.ok() && morphed) carry_instead(a, seq, opt, closed, run, rr, report, say);
+  if (!run.check.ok() && morphed && !carried_first)
+    carry_instead(a, seq, opt, closed, run, rr, report, say, "the frame-after-frame morph");
   report["frames"] = frames_json(run.result, rr);
   describe_topology(rr, report, say);
 }
