@@ -1,6 +1,7 @@
 // White-box test of the all-frames run's last repair (motion/carry_unfit_internal.h): a frame left with
 // crossing triangles is carried again from a neighbour in the cycle that has none.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "contour4d/metrics/topology.h"
 #include "contour4d/motion/reconstruct4d.h"
@@ -12,7 +13,8 @@ namespace {
 
 // The 5-frame ellipsoid cycle's frame 2 with one vertex thrown through the body to the far wall (its triangles
 // then cross the opposite side, as a fold the morph or a carry could not undo leaves them): frame 2 comes back
-// without crossings, carried from frame 3, close to what it was; every other frame keeps its bytes.
+// without crossings, carried from frame 3, close to what it was, the same at one thread; every other frame keeps
+// its bytes.
 TEST(CarryUnfit, AFrameLeftCrossingIsCarriedAgainFromANeighbour) {
   PhantomOptions po;
   po.frames = 5;
@@ -28,8 +30,14 @@ TEST(CarryUnfit, AFrameLeftCrossingIsCarriedAgainFromANeighbour) {
   x[thrown] = centre + (centre - x[thrown]) * 0.98;
   ASSERT_GT(count_self_intersections(m.frame(2)), 0u);
 
-  Reconstruct4DReport rep;
+  MeshSequence one_thread = m;
+  Reconstruct4DReport rep, rep_one;
   detail::recarry_all(p.contours, m, nullptr, options, rep);
+  {
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    detail::recarry_all(p.contours, one_thread, nullptr, options, rep_one);
+  }
+  EXPECT_EQ(one_thread.positions, m.positions);  // the same bytes at any thread count
   EXPECT_EQ(count_self_intersections(m.frame(2)), 0u);
   ASSERT_EQ(rep.carry.frames.size(), m.positions.size());
   EXPECT_EQ(rep.carry.frames[2].source, 3);
