@@ -217,8 +217,8 @@ void recarry_crossing_frames(const Sequence& seq, MeshSequence& out, const OwnSu
 // The frames that do not fit the plan (a contour that appears, vanishes, splits or merges) or folded on it:
 // the nearest rebuilt frame's mesh (in the cycle; the earlier one on a tie) carried onto each frame's own
 // surface (carry_from), one carry per source frame; a frame whose triangles still cross is carried again from
-// a neighbour (recarry_crossing_frames): biv-me's right ventricle in early diastole, its base contour half the
-// nearest rebuilt frame's, is carried from the frame after it, whose base is close to its own.
+// a neighbour (recarry_crossing_frames): biv-me's right ventricle in early diastole (frame 14), its base contour
+// half the nearest rebuilt frame's, is carried again from frame 13, whose mesh is close to its own.
 void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options,
                  Reconstruct4DReport& rep) {
   const std::vector<int>& unfit = rep.rebuild.unfit;

@@ -16,11 +16,11 @@ namespace c4d::detail {
 void carry_unfit(const Sequence& seq, MeshSequence& out, const Reconstruct4DOptions& options, Reconstruct4DReport& rep);
 
 // Every frame t ≥ 1 of `out` whose triangles cross (tested where some angle is below 15°, as the untangling
-// does), in increasing order, carried again from its neighbour in the
-// cycle that has none (t + 1 first, then t − 1) onto its own surface (`surfaces` when given, one per frame, else
-// built with options.surface), the result kept when it has fewer crossings (then fewer triangles below 25°, then
-// a larger share of angles in 40–80°). Other frames are not touched; rep.carry.frames[t].source names the
-// neighbour used. Deterministic: the frames are done in order, each from its neighbours' final positions.
+// does), in increasing order, carried again from its neighbour in the cycle that has none (t + 1 first, then
+// t − 1) onto its own surface (`surfaces` when given, one per frame, else built with options.surface), the result
+// kept when it has fewer crossings (then fewer triangles below 25°, then a larger share of angles in 40–80°).
+// Other frames are not touched; rep.carry.frames[t].source names the neighbour used. Deterministic: the frames
+// are done in order, each from its neighbours' positions at that point.
 void recarry_all(const Sequence& seq, MeshSequence& out, const std::vector<TriangleMesh>* surfaces,
                  const Reconstruct4DOptions& options, Reconstruct4DReport& rep);
 
