@@ -305,7 +305,7 @@ void carry_instead(const ReconstructRunOptions& a, const Sequence& seq, const Re
   ResultCheck other_check = run_checks(a, seq, opt.surface.label, closed, other);
   report["all_frames_fallback"] = {{"failed", failed}, {"fault", run.check.summary()}, {"carry_ok", other_check.ok()}};
   if (!other_check.ok()) return;
-  if (rr.used == AllFramesMethod::Rebuild) rc.rebuild = rr.rebuild;
+  rc.rebuild = rr.rebuild;  // as morph_instead: the report keeps why frames were carried
   run.result = std::move(other);
   rr = std::move(rc);
   run.check = std::move(other_check);
